@@ -1,0 +1,176 @@
+//! Range checks of every config field. Each failure names the field's path
+//! (`cradle.balls`, `lights[1].intensity`) and what is allowed, so that the loader
+//! can point at the line and the CLI at the flag.
+
+use super::{Config, ContactModel, LightConfig, MaterialConfig, Rgb, Vec3};
+use std::fmt;
+
+/// One invalid field.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FieldError {
+    /// Dotted path of the field, e.g. `cradle.radius` or `lights[2].position`.
+    pub path: String,
+    /// The value found, as text.
+    pub found: String,
+    /// What is allowed.
+    pub allowed: String,
+}
+
+impl fmt::Display for FieldError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "`{}` is {}; allowed: {}", self.path, self.found, self.allowed)
+    }
+}
+
+/// Collects failures in field order.
+struct Checker(Vec<FieldError>);
+
+impl Checker {
+    fn fail(&mut self, path: &str, found: impl fmt::Debug, allowed: &str) {
+        self.0.push(FieldError {
+            path: path.to_owned(),
+            found: format!("{found:?}"),
+            allowed: allowed.to_owned(),
+        });
+    }
+
+    /// A finite number with `ok(v)`.
+    fn num(&mut self, path: &str, v: f64, ok: bool, allowed: &str) {
+        if !v.is_finite() {
+            self.fail(path, v, &format!("a finite number, {allowed}"));
+        } else if !ok {
+            self.fail(path, v, allowed);
+        }
+    }
+
+    fn vec3(&mut self, path: &str, v: Vec3) {
+        if v.iter().any(|x| !x.is_finite()) {
+            self.fail(path, v, "three finite numbers (m)");
+        }
+    }
+
+    fn rgb(&mut self, path: &str, c: Rgb) {
+        if c.iter().any(|x| !x.is_finite() || !(0.0..=1.0).contains(x)) {
+            self.fail(path, c, "three numbers in 0..=1 (linear RGB)");
+        }
+    }
+
+    fn material(&mut self, path: &str, m: &MaterialConfig) {
+        self.rgb(&format!("{path}.color"), m.color);
+        if let Some(e) = m.specular {
+            self.num(&format!("{path}.specular"), e, (1.0..=10000.0).contains(&e), "None or 1..=10000");
+        }
+        self.num(&format!("{path}.reflective"), m.reflective, (0.0..=1.0).contains(&m.reflective), "0..=1");
+        if let Some(c) = m.checker {
+            self.rgb(&format!("{path}.checker"), c);
+        }
+        self.num(&format!("{path}.checker_size"), m.checker_size, m.checker_size > 0.0, "> 0 (m)");
+    }
+}
+
+impl Config {
+    /// Checks every field's range; returns all failures, in field order.
+    ///
+    /// # Errors
+    /// The list of invalid fields, when there is any.
+    pub fn validate(&self) -> Result<(), Vec<FieldError>> {
+        let mut c = Checker(Vec::new());
+        let k = &self.cradle;
+        if !(1..=200).contains(&k.balls) {
+            c.fail("cradle.balls", k.balls, "1..=200");
+        }
+        c.num("cradle.radius", k.radius, k.radius > 0.0, "> 0 (m)");
+        c.num("cradle.density", k.density, k.density > 0.0, "> 0 (kg/m^3)");
+        c.num("cradle.length", k.length, k.length > k.radius, &format!("> radius = {} (m)", k.radius));
+        c.num("cradle.gap", k.gap, k.gap >= 0.0, ">= 0 (m)");
+        c.num(
+            "cradle.pivot_height",
+            k.pivot_height,
+            k.pivot_height > k.length + k.radius,
+            &format!("> length + radius = {} (m), so balls clear the floor", k.length + k.radius),
+        );
+        c.num("cradle.rail_spread", k.rail_spread, k.rail_spread > k.radius, &format!("> radius = {} (m)", k.radius));
+        c.num("cradle.gravity", k.gravity, k.gravity > 0.0, "> 0 (m/s^2)");
+        c.num(
+            "cradle.string_radius",
+            k.string_radius,
+            k.string_radius > 0.0 && k.string_radius < k.radius,
+            &format!("> 0 and < radius = {} (m)", k.radius),
+        );
+        c.num("cradle.frame_radius", k.frame_radius, k.frame_radius > 0.0, "> 0 (m)");
+
+        let s = &self.start;
+        if s.lift > k.balls {
+            c.fail("start.lift", s.lift, &format!("0..={} (the number of balls)", k.balls));
+        }
+        c.num("start.angle_deg", s.angle_deg, (0.0..180.0).contains(&s.angle_deg), "0 <= angle < 180 (degrees)");
+
+        let ct = &self.contact;
+        if ct.model == ContactModel::Hertz {
+            c.fail("contact.model", "hertz", "ideal (Hertz contact is planned but not built yet)");
+        }
+        c.num("contact.restitution", ct.restitution, (0.0..=1.0).contains(&ct.restitution), "0..=1");
+        c.num("contact.youngs_modulus", ct.youngs_modulus, ct.youngs_modulus > 0.0, "> 0 (Pa)");
+        c.num("contact.poisson_ratio", ct.poisson_ratio, (0.0..0.5).contains(&ct.poisson_ratio), "0 <= nu < 0.5");
+
+        let dt = self.physics.dt;
+        c.num("physics.dt", dt, (1e-7..=0.1).contains(&dt), "1e-7..=0.1 (s)");
+
+        let r = &self.render;
+        if !(16..=8192).contains(&r.width) {
+            c.fail("render.width", r.width, "16..=8192 (pixels)");
+        }
+        if !(16..=8192).contains(&r.height) {
+            c.fail("render.height", r.height, "16..=8192 (pixels)");
+        }
+        if r.max_depth > 16 {
+            c.fail("render.max_depth", r.max_depth, "0..=16");
+        }
+        if !(1..=64).contains(&r.samples) {
+            c.fail("render.samples", r.samples, "1..=64");
+        }
+        if r.threads > 256 {
+            c.fail("render.threads", r.threads, "0..=256 (0 = every core)");
+        }
+        c.rgb("render.background", r.background);
+
+        let cam = &self.camera;
+        c.vec3("camera.position", cam.position);
+        c.vec3("camera.look_at", cam.look_at);
+        if cam.position == cam.look_at {
+            c.fail("camera.look_at", cam.look_at, "a point other than camera.position");
+        }
+        c.num("camera.fov_deg", cam.fov_deg, (1.0..=170.0).contains(&cam.fov_deg), "1..=170 (degrees)");
+
+        if self.lights.len() > 16 {
+            c.fail("lights", self.lights.len(), "at most 16 lights");
+        }
+        for (i, light) in self.lights.iter().enumerate() {
+            let p = format!("lights[{i}]");
+            let (color, intensity) = match light {
+                LightConfig::Ambient { color, intensity } => (color, intensity),
+                LightConfig::Point { position, color, intensity } => {
+                    c.vec3(&format!("{p}.position"), *position);
+                    (color, intensity)
+                }
+                LightConfig::Directional { direction, color, intensity } => {
+                    c.vec3(&format!("{p}.direction"), *direction);
+                    if direction.iter().all(|x| *x == 0.0) {
+                        c.fail(&format!("{p}.direction"), direction, "a non-zero direction");
+                    }
+                    (color, intensity)
+                }
+            };
+            c.rgb(&format!("{p}.color"), *color);
+            c.num(&format!("{p}.intensity"), *intensity, *intensity >= 0.0, ">= 0");
+        }
+
+        let m = &self.materials;
+        c.material("materials.ball", &m.ball);
+        c.material("materials.string", &m.string);
+        c.material("materials.frame", &m.frame);
+        c.material("materials.floor", &m.floor);
+
+        if c.0.is_empty() { Ok(()) } else { Err(c.0) }
+    }
+}

@@ -1,0 +1,114 @@
+//! The cradle as the rest of the program sees it: parameters, a start, and the
+//! state at any time, from whichever engine the config picks.
+
+use super::contact::Resolution;
+use super::exact::ExactEngine;
+use super::params::{CradleParams, Integrator, REST_FRACTION, lifted_start};
+use super::stepped::SteppedEngine;
+
+/// The state of every ball at one time.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Snapshot {
+    /// Time (s).
+    pub t: f64,
+    /// Angle of each ball from the vertical (rad), positive towards +x.
+    pub theta: Vec<f64>,
+    /// Angular velocity of each ball (rad/s).
+    pub omega: Vec<f64>,
+    /// Impacts so far.
+    pub collisions: u64,
+}
+
+#[derive(Debug, Clone)]
+enum Engine {
+    Exact(ExactEngine),
+    Stepped(SteppedEngine),
+}
+
+/// A running cradle. Sample it with [`Cradle::snapshot`] at non-decreasing times.
+#[derive(Debug, Clone)]
+pub struct Cradle {
+    params: CradleParams,
+    engine: Engine,
+    energy0: f64,
+}
+
+impl Cradle {
+    /// A cradle whose `lift` leftmost balls are released from `-angle` (rad) at t = 0.
+    /// `dt` (s) is the step of fixed-step integrators; `Exact` ignores it.
+    #[must_use]
+    pub fn new(params: CradleParams, integrator: Integrator, dt: f64, lift: usize, angle: f64) -> Self {
+        let (theta, omega) = lifted_start(params.balls, lift, angle);
+        Self::from_state(params, integrator, dt, &theta, &omega)
+    }
+
+    /// A cradle starting from any state at t = 0.
+    #[must_use]
+    pub fn from_state(params: CradleParams, integrator: Integrator, dt: f64, theta: &[f64], omega: &[f64]) -> Self {
+        let energy0 = params.energy(theta, omega);
+        // The fastest a ball can go is when all the energy is in one ball at the
+        // bottom; the rest speed is a tiny fraction of that.
+        let top_speed = (2.0 * energy0 / params.inertia()).sqrt() * params.length;
+        let resolution = Resolution {
+            restitution: params.restitution,
+            rest_speed: (REST_FRACTION * top_speed).max(f64::MIN_POSITIVE),
+            touch: 1e-9 * params.radius,
+        };
+        let engine = match integrator {
+            Integrator::Exact => Engine::Exact(ExactEngine::new(params, resolution, theta, omega)),
+            method => Engine::Stepped(SteppedEngine::new(params, resolution, method, dt, theta, omega)),
+        };
+        Self {
+            params,
+            engine,
+            energy0,
+        }
+    }
+
+    /// The state at time `t` (s). Times must not decrease from call to call.
+    pub fn snapshot(&mut self, t: f64) -> Snapshot {
+        let (theta, omega, collisions) = match &mut self.engine {
+            Engine::Exact(e) => {
+                let (th, om) = e.state_at(t);
+                (th, om, e.collisions())
+            }
+            Engine::Stepped(e) => {
+                let (th, om) = e.state_at(t);
+                (th, om, e.collisions())
+            }
+        };
+        Snapshot {
+            t,
+            theta,
+            omega,
+            collisions,
+        }
+    }
+
+    /// The physical parameters.
+    #[must_use]
+    pub fn params(&self) -> &CradleParams {
+        &self.params
+    }
+
+    /// Energy at the start (J).
+    #[must_use]
+    pub fn initial_energy(&self) -> f64 {
+        self.energy0
+    }
+
+    /// Energy of a snapshot (J).
+    #[must_use]
+    pub fn energy(&self, s: &Snapshot) -> f64 {
+        self.params.energy(&s.theta, &s.omega)
+    }
+
+    /// Relative energy error of a snapshot against the start (0 when no energy).
+    #[must_use]
+    pub fn energy_rel_error(&self, s: &Snapshot) -> f64 {
+        if self.energy0 == 0.0 {
+            return self.energy(s).abs();
+        }
+        (self.energy(s) - self.energy0) / self.energy0
+    }
+}

@@ -1,0 +1,20 @@
+//! The physics core: plain Rust over plain data, no ECS or window types.
+//!
+//! Each ball is a rigid physical pendulum in one plane. Between impacts it flies in
+//! closed form (`flight`, from the Jacobi elliptic functions of `elliptic`);
+//! impacts are roots of the neighbours' gap functions (`contact`, `roots`), found
+//! by the exact event-driven engine (`exact`). Fixed-step integrators (`stepped`)
+//! with the same impacts exist for comparison. `cradle` puts them behind one type.
+
+pub mod contact;
+pub mod cradle;
+pub mod elliptic;
+pub mod exact;
+pub mod flight;
+pub mod params;
+pub mod roots;
+pub mod stepped;
+
+pub use cradle::{Cradle, Snapshot};
+pub use flight::{Flight, period_ratio};
+pub use params::{CradleParams, Integrator};

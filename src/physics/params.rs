@@ -1,0 +1,135 @@
+//! The physical parameters of a cradle and the quantities derived from them
+//! (pivot spacing, moment of inertia, natural frequency, energy, ball centres).
+
+use serde::{Deserialize, Serialize};
+
+/// Below this fraction of the fastest speed the cradle starts with, an impact with
+/// restitution < 1 is treated as resting contact (restitution 0): without it a
+/// chain of touching balls would collide infinitely often in finite time (Zeno).
+pub const REST_FRACTION: f64 = 1e-6;
+
+/// Which solver advances the cradle between impacts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum Integrator {
+    /// Closed-form flight (Jacobi elliptic functions) and root-found impacts.
+    #[default]
+    Exact,
+    /// Semi-implicit (symplectic) Euler, order 1.
+    Euler,
+    /// Stormer-Verlet (velocity form), order 2.
+    Verlet,
+    /// Classic Runge-Kutta, order 4.
+    Rk4,
+    /// Yoshida's 4th-order composition of Verlet steps.
+    Yoshida4,
+}
+
+impl Integrator {
+    /// Every integrator, in the order the CLI lists them.
+    pub const ALL: [Self; 5] = [
+        Self::Exact,
+        Self::Euler,
+        Self::Verlet,
+        Self::Rk4,
+        Self::Yoshida4,
+    ];
+
+    /// The name used in configs, flags and JSON.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Exact => "exact",
+            Self::Euler => "euler",
+            Self::Verlet => "verlet",
+            Self::Rk4 => "rk4",
+            Self::Yoshida4 => "yoshida4",
+        }
+    }
+}
+
+/// Everything the physics needs to know about a cradle (SI units).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CradleParams {
+    /// Number of balls.
+    pub balls: usize,
+    /// Ball radius (m).
+    pub radius: f64,
+    /// Ball mass (kg).
+    pub mass: f64,
+    /// Pivot to ball centre (m).
+    pub length: f64,
+    /// Gap between neighbouring balls at rest (m).
+    pub gap: f64,
+    /// Gravitational acceleration (m/s^2).
+    pub gravity: f64,
+    /// Coefficient of restitution of ideal impacts, 0..=1.
+    pub restitution: f64,
+}
+
+impl CradleParams {
+    /// Distance between neighbouring pivots (m): `2r + gap`.
+    #[must_use]
+    pub fn spacing(&self) -> f64 {
+        2.0 * self.radius + self.gap
+    }
+
+    /// Moment of inertia about the pivot of a solid sphere on a rigid V of strings
+    /// (kg m^2): `m (L^2 + 2 r^2 / 5)`.
+    #[must_use]
+    pub fn inertia(&self) -> f64 {
+        self.mass * (self.length * self.length + 0.4 * self.radius * self.radius)
+    }
+
+    /// Small-angle angular frequency (rad/s): `sqrt(g L / (L^2 + 2 r^2 / 5))`.
+    #[must_use]
+    pub fn w0(&self) -> f64 {
+        (self.gravity * self.length
+            / (self.length * self.length + 0.4 * self.radius * self.radius))
+            .sqrt()
+    }
+
+    /// Energy of one ball (J): `I omega^2 / 2 + m g L (1 - cos theta)`, with
+    /// `1 - cos theta` written as `2 sin^2(theta/2)` to keep its digits near 0.
+    #[must_use]
+    pub fn ball_energy(&self, theta: f64, omega: f64) -> f64 {
+        let s = (0.5 * theta).sin();
+        0.5 * self.inertia() * omega * omega + 2.0 * self.mass * self.gravity * self.length * s * s
+    }
+
+    /// Total energy of the cradle (J).
+    #[must_use]
+    pub fn energy(&self, theta: &[f64], omega: &[f64]) -> f64 {
+        theta
+            .iter()
+            .zip(omega)
+            .map(|(&t, &w)| self.ball_energy(t, w))
+            .sum()
+    }
+
+    /// Centre of ball `i` in the swing plane, relative to ball 0's pivot (m):
+    /// `(i d + L sin theta, -L cos theta)`.
+    #[must_use]
+    pub fn centre(&self, i: usize, theta: f64) -> (f64, f64) {
+        let (s, c) = theta.sin_cos();
+        (
+            i as f64 * self.spacing() + self.length * s,
+            -self.length * c,
+        )
+    }
+
+    /// Speed (m/s) of a ball's centre at the bottom after release from `angle` (rad).
+    #[must_use]
+    pub fn release_speed(&self, angle: f64) -> f64 {
+        2.0 * self.length * self.w0() * (0.5 * angle).sin().abs()
+    }
+}
+
+/// The starting state: the `lift` leftmost balls pulled to `-angle`, all at rest.
+#[must_use]
+pub fn lifted_start(balls: usize, lift: usize, angle: f64) -> (Vec<f64>, Vec<f64>) {
+    let theta = (0..balls)
+        .map(|i| if i < lift { -angle } else { 0.0 })
+        .collect();
+    (theta, vec![0.0; balls])
+}

@@ -1,0 +1,139 @@
+//! ECS components, markers, resources and messages of the cradle world.
+
+use crate::config::{CameraConfig, Config, LightConfig};
+use crate::physics::{Cradle, Snapshot};
+use crate::trace;
+use bevy_ecs::prelude::*;
+use glam::{DQuat, DVec3};
+
+/// Where an entity is: world-space position and orientation (f64, like the physics).
+#[derive(Component, Debug, Clone, Copy, PartialEq)]
+pub struct Transform {
+    /// Position (m).
+    pub translation: DVec3,
+    /// Orientation.
+    pub rotation: DQuat,
+}
+
+impl Transform {
+    /// A transform at `translation` with no rotation.
+    #[must_use]
+    pub fn at(translation: DVec3) -> Self {
+        Self {
+            translation,
+            rotation: DQuat::IDENTITY,
+        }
+    }
+
+    /// The transform of a cylinder from `a` to `b` (its local +y axis along `b - a`).
+    #[must_use]
+    pub fn segment(a: DVec3, b: DVec3) -> Self {
+        Self {
+            translation: 0.5 * (a + b),
+            rotation: DQuat::from_rotation_arc(DVec3::Y, (b - a).normalize()),
+        }
+    }
+}
+
+/// An entity's shape in its local frame.
+#[derive(Component, Debug, Clone, Copy, PartialEq)]
+pub enum Shape {
+    /// A sphere about the origin.
+    Sphere { radius: f64 },
+    /// A capped cylinder along local y, centred on the origin.
+    Cylinder { radius: f64, length: f64 },
+    /// The plane y = 0, facing +y.
+    Plane,
+}
+
+/// An entity's look (linear RGB).
+#[derive(Component, Debug, Clone, Copy, PartialEq)]
+pub struct Material(pub trace::Material);
+
+/// Marks a ball.
+#[derive(Component, Debug, Clone, Copy)]
+pub struct Ball;
+
+/// Marks a string (the design's `String`, named so as not to shadow std's).
+#[derive(Component, Debug, Clone, Copy)]
+pub struct Strand;
+
+/// Marks a rod of the frame.
+#[derive(Component, Debug, Clone, Copy)]
+pub struct Rod;
+
+/// Marks the floor.
+#[derive(Component, Debug, Clone, Copy)]
+pub struct Floor;
+
+/// A ball's pendulum: its index (0 = leftmost), pivot (m) and length (m).
+#[derive(Component, Debug, Clone, Copy, PartialEq)]
+pub struct Pendulum {
+    /// Ball index from the left.
+    pub index: usize,
+    /// Midpoint of the two rail anchors: the swing axis passes through it along z.
+    pub pivot: DVec3,
+    /// Pivot to ball centre (m).
+    pub length: f64,
+}
+
+/// Which ball a string holds and where on the rail it is tied.
+#[derive(Component, Debug, Clone, Copy, PartialEq)]
+pub struct StrandOf {
+    /// Ball index.
+    pub ball: usize,
+    /// The string's end on the rail (m).
+    pub anchor: DVec3,
+}
+
+/// A light source entity.
+#[derive(Component, Debug, Clone, PartialEq)]
+pub struct Light(pub LightConfig);
+
+/// Running or paused.
+#[derive(Resource, Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SimState {
+    /// The clock runs.
+    Running,
+    /// The clock stands still.
+    Paused,
+}
+
+/// Simulated time (s) and the wall-clock length of the frame being run (s).
+#[derive(Resource, Debug, Clone, Copy, Default, PartialEq)]
+pub struct SimClock {
+    /// Simulated time.
+    pub t: f64,
+    /// Length of this frame, set by the driver before each run of the schedule.
+    pub frame_dt: f64,
+}
+
+/// The physics and its latest state.
+#[derive(Resource, Debug, Clone)]
+pub struct CradleState {
+    /// The cradle.
+    pub cradle: Cradle,
+    /// Its state at the clock's time.
+    pub snapshot: Snapshot,
+}
+
+/// The config the world was spawned from.
+#[derive(Resource, Debug, Clone)]
+pub struct ActiveConfig(pub Config);
+
+/// The camera of the world.
+#[derive(Resource, Debug, Clone)]
+pub struct CameraRes(pub CameraConfig);
+
+/// The flat scene the extract stage fills for the tracer.
+#[derive(Resource, Debug, Clone, Default)]
+pub struct FlatScene(pub trace::Scene);
+
+/// Commands from the user (keys) to the world.
+#[derive(Message, Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Control {
+    /// Start or stop the swing.
+    TogglePause,
+    /// Back to the asset's initial state.
+    Reset,
+}

@@ -1,0 +1,98 @@
+//! The ECS world: components (`components`), spawning from a config (`spawn`), the
+//! frame's systems (`systems`), and [`CradleWorld`], which owns the world and the
+//! frame schedule of chained sets Input -> Physics -> Extract.
+
+pub mod components;
+pub mod spawn;
+pub mod systems;
+
+pub use components::{Control, CradleState, FlatScene, SimClock, SimState};
+
+use crate::config::Config;
+use bevy_ecs::prelude::*;
+
+/// The stages of a frame, run in this order.
+#[derive(SystemSet, Debug, Clone, PartialEq, Eq, Hash)]
+pub enum FrameSet {
+    /// Keys and controls; the clock.
+    Input,
+    /// The cradle's state; ball and string transforms.
+    Physics,
+    /// The flat scene for the tracer.
+    Extract,
+}
+
+/// The frame schedule.
+#[must_use]
+pub fn frame_schedule() -> Schedule {
+    let mut schedule = Schedule::default();
+    schedule.configure_sets((FrameSet::Input, FrameSet::Physics, FrameSet::Extract).chain());
+    schedule.add_systems(
+        (
+            bevy_ecs::message::message_update_system,
+            systems::apply_controls,
+            systems::advance_clock,
+        )
+            .chain()
+            .in_set(FrameSet::Input),
+    );
+    schedule.add_systems(
+        (systems::step_physics, systems::place_balls, systems::place_strands)
+            .chain()
+            .in_set(FrameSet::Physics),
+    );
+    schedule.add_systems(systems::extract.in_set(FrameSet::Extract));
+    schedule
+}
+
+/// The world and its frame schedule.
+pub struct CradleWorld {
+    /// The ECS world.
+    pub world: World,
+    schedule: Schedule,
+}
+
+impl CradleWorld {
+    /// A world spawned from `config`.
+    #[must_use]
+    pub fn new(config: &Config) -> Self {
+        Self {
+            world: spawn::build_world(config),
+            schedule: frame_schedule(),
+        }
+    }
+
+    /// Sends a control, handled at the start of the next frame.
+    pub fn send(&mut self, control: Control) {
+        self.world.write_message(control);
+    }
+
+    /// Runs one frame that lasted `dt` seconds of wall-clock time.
+    pub fn frame(&mut self, dt: f64) {
+        self.world.resource_mut::<SimClock>().frame_dt = dt;
+        self.schedule.run(&mut self.world);
+    }
+
+    /// Replaces the scene by one spawned from `config`.
+    pub fn respawn(&mut self, config: &Config) {
+        spawn::respawn(&mut self.world, config);
+    }
+
+    /// The flat scene of the last frame.
+    #[must_use]
+    pub fn scene(&self) -> &crate::trace::Scene {
+        &self.world.resource::<FlatScene>().0
+    }
+
+    /// Running or paused.
+    #[must_use]
+    pub fn state(&self) -> SimState {
+        *self.world.resource::<SimState>()
+    }
+
+    /// The physics state of the last frame.
+    #[must_use]
+    pub fn cradle(&self) -> &CradleState {
+        self.world.resource::<CradleState>()
+    }
+}

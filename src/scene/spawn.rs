@@ -1,0 +1,171 @@
+//! Spawning the world from a config: balls on V strings from two top rails, the
+//! frame's rods, the floor, lights and camera, plus the physics resources.
+
+use super::components::{
+    ActiveConfig, Ball, CameraRes, CradleState, FlatScene, Floor, Light, Material, Pendulum, Rod, Shape,
+    SimClock, SimState, Strand, StrandOf, Transform,
+};
+use crate::config::{Config, MaterialConfig};
+use crate::physics::Cradle;
+use crate::trace;
+use bevy_ecs::prelude::*;
+use glam::{DVec3, Vec3};
+
+/// Converts a config material to the tracer's.
+#[must_use]
+pub fn material(m: &MaterialConfig) -> Material {
+    let rgb = |c: [f64; 3]| Vec3::new(c[0] as f32, c[1] as f32, c[2] as f32);
+    Material(trace::Material {
+        color: rgb(m.color),
+        specular: m.specular.map(|e| e as f32),
+        reflective: m.reflective as f32,
+        checker: m.checker.map(|c| (rgb(c), m.checker_size as f32)),
+    })
+}
+
+/// The cradle's layout in world space, derived from the config.
+#[derive(Debug, Clone, Copy)]
+pub struct Layout {
+    /// Pivot (swing axis point at z = 0) of ball 0 (m).
+    pub first_pivot: DVec3,
+    /// Distance between pivots (m).
+    pub spacing: f64,
+    /// Half the frame's length along x (m): the posts stand at x = +-this.
+    pub half_width: f64,
+}
+
+impl Layout {
+    /// The layout for `config`: pivots centred on x = 0, posts beyond any ball's reach.
+    #[must_use]
+    pub fn new(config: &Config) -> Self {
+        let c = &config.cradle;
+        let spacing = 2.0 * c.radius + c.gap;
+        let first_x = -0.5 * (c.balls as f64 - 1.0) * spacing;
+        // A ball lifted to `angle` swings no further out than that; beyond 90
+        // degrees its centre reaches a full length sideways.
+        let angle = config.lift_angle().min(std::f64::consts::FRAC_PI_2);
+        let reach = c.length * angle.sin();
+        Self {
+            first_pivot: DVec3::new(first_x, c.pivot_height, 0.0),
+            spacing,
+            half_width: -first_x + reach + c.radius + c.frame_radius + 0.25 * c.length,
+        }
+    }
+
+    /// Pivot of ball `i`.
+    #[must_use]
+    pub fn pivot(&self, i: usize) -> DVec3 {
+        self.first_pivot + DVec3::X * (i as f64 * self.spacing)
+    }
+}
+
+/// Where a ball hangs at angle `theta`: centre and orientation.
+#[must_use]
+pub fn ball_transform(pivot: DVec3, length: f64, theta: f64) -> Transform {
+    let (s, c) = theta.sin_cos();
+    Transform {
+        translation: pivot + DVec3::new(length * s, -length * c, 0.0),
+        rotation: glam::DQuat::from_rotation_z(theta),
+    }
+}
+
+/// The point on top of a ball where its strings meet (towards the swing axis).
+#[must_use]
+pub fn attach_point(ball: &Transform, radius: f64) -> DVec3 {
+    ball.translation + ball.rotation * DVec3::new(0.0, radius, 0.0)
+}
+
+/// A world with every entity and resource for `config`, the cradle at t = 0.
+#[must_use]
+pub fn build_world(config: &Config) -> World {
+    let mut world = World::new();
+    bevy_ecs::message::MessageRegistry::register_message::<super::components::Control>(&mut world);
+    spawn_entities(&mut world, config);
+    insert_resources(&mut world, config);
+    world
+}
+
+/// Replaces every entity and resource by those of `config` (a new ball count, a
+/// reloaded asset).
+pub fn respawn(world: &mut World, config: &Config) {
+    let old: Vec<Entity> = world
+        .query_filtered::<Entity, Or<(With<Transform>, With<Light>)>>()
+        .iter(world)
+        .collect();
+    for e in old {
+        world.despawn(e);
+    }
+    spawn_entities(world, config);
+    insert_resources(world, config);
+}
+
+fn insert_resources(world: &mut World, config: &Config) {
+    let cradle = Cradle::new(
+        config.cradle_params(),
+        config.physics.integrator,
+        config.physics.dt,
+        config.start.lift,
+        config.lift_angle(),
+    );
+    let mut cradle_for_state = cradle.clone();
+    let snapshot = cradle_for_state.snapshot(0.0);
+    world.insert_resource(CradleState {
+        cradle: cradle_for_state,
+        snapshot,
+    });
+    world.insert_resource(SimClock::default());
+    world.insert_resource(if config.start.running { SimState::Running } else { SimState::Paused });
+    world.insert_resource(ActiveConfig(config.clone()));
+    world.insert_resource(CameraRes(config.camera.clone()));
+    world.init_resource::<FlatScene>();
+}
+
+fn spawn_entities(world: &mut World, config: &Config) {
+    let c = &config.cradle;
+    let m = &config.materials;
+    let layout = Layout::new(config);
+    let (ball_mat, string_mat, frame_mat) = (material(&m.ball), material(&m.string), material(&m.frame));
+    let (theta, _) = crate::physics::params::lifted_start(c.balls, config.start.lift, config.lift_angle());
+    for (i, &th) in theta.iter().enumerate() {
+        let pivot = layout.pivot(i);
+        let ball = ball_transform(pivot, c.length, th);
+        world.spawn((
+            Ball,
+            Pendulum { index: i, pivot, length: c.length },
+            ball,
+            Shape::Sphere { radius: c.radius },
+            ball_mat,
+        ));
+        let top = attach_point(&ball, c.radius);
+        for side in [-1.0, 1.0] {
+            let anchor = pivot + DVec3::Z * (side * c.rail_spread);
+            world.spawn((
+                Strand,
+                StrandOf { ball: i, anchor },
+                Transform::segment(anchor, top),
+                Shape::Cylinder { radius: c.string_radius, length: (top - anchor).length() },
+                string_mat,
+            ));
+        }
+    }
+    let (x, h, s, fr) = (layout.half_width, c.pivot_height, c.rail_spread, c.frame_radius);
+    let mut rod = |a: DVec3, b: DVec3| {
+        world.spawn((Rod, Transform::segment(a, b), Shape::Cylinder { radius: fr, length: (b - a).length() }, frame_mat));
+    };
+    for z in [-s, s] {
+        // Top rail, base rail and the two posts of each side.
+        rod(DVec3::new(-x, h, z), DVec3::new(x, h, z));
+        rod(DVec3::new(-x, fr, z), DVec3::new(x, fr, z));
+        rod(DVec3::new(-x, fr, z), DVec3::new(-x, h, z));
+        rod(DVec3::new(x, fr, z), DVec3::new(x, h, z));
+    }
+    for px in [-x, x] {
+        // Cross bars joining the two sides at the top and the base.
+        rod(DVec3::new(px, h, -s), DVec3::new(px, h, s));
+        rod(DVec3::new(px, fr, -s), DVec3::new(px, fr, s));
+    }
+    world.spawn((Floor, Transform::at(DVec3::ZERO), Shape::Plane, material(&m.floor)));
+    for light in &config.lights {
+        world.spawn(Light(light.clone()));
+    }
+}

@@ -1,0 +1,79 @@
+//! `newtons-cradle simulate`: the cradle's state as JSON Lines (DESIGN.md contract).
+//!
+//! Line 1 `{"params":{..}}`; then one line per sample at `t = n * every` (a
+//! product, never a running sum) up to the duration; last `{"summary":{..}}`.
+
+use crate::config::Config;
+use crate::physics::Cradle;
+use serde_json::json;
+use std::io::{self, Write};
+use std::time::Instant;
+
+/// What a run measured, as printed in the summary line.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Summary {
+    /// Simulated seconds.
+    pub duration: f64,
+    /// Impacts in the run.
+    pub collisions: u64,
+    /// Energy at t = 0 (J).
+    pub energy_initial: f64,
+    /// Energy at the last sample (J).
+    pub energy_final: f64,
+    /// Largest |E(t) - E(0)| / E(0) over the samples.
+    pub max_energy_rel_error: f64,
+    /// Wall-clock seconds spent.
+    pub wall_seconds: f64,
+}
+
+/// Number of samples `n = 0..=count` with `n * every <= duration` (within 1e-9).
+#[must_use]
+pub fn sample_count(duration: f64, every: f64) -> u64 {
+    (duration / every * (1.0 + 1e-9)).floor() as u64
+}
+
+/// Runs the simulation, writing JSON Lines to `out`.
+///
+/// # Errors
+/// When writing to `out` fails.
+pub fn simulate(config: &Config, duration: f64, every: f64, out: &mut impl Write) -> io::Result<Summary> {
+    let start = Instant::now();
+    let p = config.cradle_params();
+    let params = json!({"params": {
+        "balls": p.balls, "radius": p.radius, "length": p.length, "gap": p.gap,
+        "gravity": p.gravity, "mass": p.mass, "lift": config.start.lift,
+        "angle_deg": config.start.angle_deg, "contact": config.contact.model.name(),
+        "integrator": config.physics.integrator.name(), "dt": config.physics.dt,
+        "restitution": p.restitution, "density": config.cradle.density,
+    }});
+    writeln!(out, "{params}")?;
+    let mut cradle = Cradle::new(p, config.physics.integrator, config.physics.dt, config.start.lift, config.lift_angle());
+    let e0 = cradle.initial_energy();
+    let (mut max_err, mut e_last, mut collisions) = (0.0_f64, e0, 0);
+    for n in 0..=sample_count(duration, every) {
+        let t = n as f64 * every;
+        let s = cradle.snapshot(t);
+        let e = cradle.energy(&s);
+        max_err = max_err.max(cradle.energy_rel_error(&s).abs());
+        e_last = e;
+        collisions = s.collisions;
+        let line = json!({"t": t, "theta": s.theta, "omega": s.omega, "energy": e, "collisions": s.collisions});
+        writeln!(out, "{line}")?;
+    }
+    let summary = Summary {
+        duration,
+        collisions,
+        energy_initial: e0,
+        energy_final: e_last,
+        max_energy_rel_error: max_err,
+        wall_seconds: start.elapsed().as_secs_f64(),
+    };
+    let line = json!({"summary": {
+        "duration": summary.duration, "collisions": summary.collisions,
+        "energy_initial": summary.energy_initial, "energy_final": summary.energy_final,
+        "max_energy_rel_error": summary.max_energy_rel_error, "wall_seconds": summary.wall_seconds,
+    }});
+    writeln!(out, "{line}")?;
+    out.flush()?;
+    Ok(summary)
+}
