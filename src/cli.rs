@@ -128,13 +128,29 @@ impl Common {
         };
         add("cradle.balls", "--balls", self.balls.map(|v| v.to_string()));
         add("start.lift", "--lift", self.lift.map(|v| v.to_string()));
-        add("start.angle_deg", "--angle", self.angle.map(|v| v.to_string()));
+        add(
+            "start.angle_deg",
+            "--angle",
+            self.angle.map(|v| v.to_string()),
+        );
         add("cradle.gap", "--gap", self.gap.map(|v| v.to_string()));
-        add("contact.model", "--contact", self.contact.map(|v| format!("{v:?}").to_lowercase()));
+        add(
+            "contact.model",
+            "--contact",
+            self.contact.map(|v| format!("{v:?}").to_lowercase()),
+        );
         add("physics.dt", "--dt", self.dt.map(|v| v.to_string()));
-        add("render.threads", "--threads", self.threads.map(|v| v.to_string()));
+        add(
+            "render.threads",
+            "--threads",
+            self.threads.map(|v| v.to_string()),
+        );
         add("render.width", "--width", self.width.map(|v| v.to_string()));
-        add("render.height", "--height", self.height.map(|v| v.to_string()));
+        add(
+            "render.height",
+            "--height",
+            self.height.map(|v| v.to_string()),
+        );
         out
     }
 
@@ -198,14 +214,20 @@ impl Common {
             return Ok(());
         };
         let given = self.given();
-        Err(InputError::Flag(errors.iter().map(|e| flag_message(e, &given)).collect::<Vec<_>>().join("\n")))
+        Err(InputError::Flag(
+            errors
+                .iter()
+                .map(|e| flag_message(e, &given))
+                .collect::<Vec<_>>()
+                .join("\n"),
+        ))
     }
 }
 
 /// Names the flag that set a field, or says which field of the asset a flag broke.
 fn flag_message(e: &FieldError, given: &[(&str, &str, String)]) -> String {
     match given.iter().find(|(field, _, _)| *field == e.path) {
-        Some((_, flag, raw)) => format!("{flag} {raw}: out of range; allowed: {}", e.allowed),
+        Some((_, flag, raw)) => format!("{flag} {raw}: not allowed; allowed: {}", e.allowed),
         None => {
             let flags: Vec<&str> = given.iter().map(|g| g.1).collect();
             format!("{e} (after applying {})", flags.join(", "))
@@ -219,10 +241,16 @@ fn flag_message(e: &FieldError, given: &[(&str, &str, String)]) -> String {
 /// A flag out of range, with its range.
 pub fn check_simulate(a: &SimulateArgs) -> Result<(), InputError> {
     if !(a.duration.is_finite() && (0.0..=1e7).contains(&a.duration)) {
-        return Err(InputError::Flag(format!("--duration {}: out of range; allowed: 0..=1e7 (s)", a.duration)));
+        return Err(InputError::Flag(format!(
+            "--duration {}: not allowed; allowed: 0..=1e7 (s)",
+            a.duration
+        )));
     }
     if !(a.every.is_finite() && a.every > 0.0) {
-        return Err(InputError::Flag(format!("--every {}: out of range; allowed: > 0 (s)", a.every)));
+        return Err(InputError::Flag(format!(
+            "--every {}: not allowed; allowed: > 0 (s)",
+            a.every
+        )));
     }
     if a.duration / a.every > 1e8 {
         return Err(InputError::Flag(format!(

@@ -15,8 +15,8 @@
 
 pub mod cli;
 pub mod config;
-pub mod preview;
 pub mod physics;
+pub mod preview;
 pub mod scene;
 pub mod simulate;
 pub mod trace;

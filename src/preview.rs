@@ -16,7 +16,8 @@ pub fn draw(config: &Config, theta: &[f64]) -> String {
     let mut row = vec![' '; COLUMNS];
     for (i, &th) in theta.iter().enumerate() {
         let x = layout.pivot(i).x + config.cradle.length * th.sin();
-        let col = ((x + layout.half_width) / (2.0 * layout.half_width) * (COLUMNS - 1) as f64).round();
+        let col =
+            ((x + layout.half_width) / (2.0 * layout.half_width) * (COLUMNS - 1) as f64).round();
         row[col.clamp(0.0, (COLUMNS - 1) as f64) as usize] = 'O';
     }
     format!("|{}|", row.into_iter().collect::<String>())
@@ -39,7 +40,12 @@ pub fn preview(config: &Config, seconds: f64, out: &mut impl Write) -> io::Resul
         if n % 6 == 0 {
             let s = &world.cradle().snapshot;
             let err = world.cradle().cradle.energy_rel_error(s);
-            let line = format!("{} t={:5.2} s  impacts={:<4} energy err={err:+.1e}", draw(config, &s.theta), s.t, s.collisions);
+            let line = format!(
+                "{} t={:5.2} s  impacts={:<4} energy err={err:+.1e}",
+                draw(config, &s.theta),
+                s.t,
+                s.collisions
+            );
             if live {
                 write!(out, "\r{line}")?;
                 out.flush()?;

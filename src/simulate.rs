@@ -36,7 +36,12 @@ pub fn sample_count(duration: f64, every: f64) -> u64 {
 ///
 /// # Errors
 /// When writing to `out` fails.
-pub fn simulate(config: &Config, duration: f64, every: f64, out: &mut impl Write) -> io::Result<Summary> {
+pub fn simulate(
+    config: &Config,
+    duration: f64,
+    every: f64,
+    out: &mut impl Write,
+) -> io::Result<Summary> {
     let start = Instant::now();
     let p = config.cradle_params();
     let params = json!({"params": {
@@ -47,7 +52,13 @@ pub fn simulate(config: &Config, duration: f64, every: f64, out: &mut impl Write
         "restitution": p.restitution, "density": config.cradle.density,
     }});
     writeln!(out, "{params}")?;
-    let mut cradle = Cradle::new(p, config.physics.integrator, config.physics.dt, config.start.lift, config.lift_angle());
+    let mut cradle = Cradle::new(
+        p,
+        config.physics.integrator,
+        config.physics.dt,
+        config.start.lift,
+        config.lift_angle(),
+    );
     let e0 = cradle.initial_energy();
     let (mut max_err, mut e_last, mut collisions) = (0.0_f64, e0, 0);
     for n in 0..=sample_count(duration, every) {

@@ -1,6 +1,11 @@
 //! The elliptic functions against independent high-precision values (mpmath 1.3 at
 //! 30 digits, `mp.ellipfun`, `mp.ellipk`, `mp.ellipf`) and the period table.
 
+#![expect(
+    clippy::excessive_precision,
+    reason = "reference values are quoted with every digit mpmath printed"
+)]
+
 use newtons_cradle::physics::elliptic::{ellip_f, ellip_k, phase_of, sncndn};
 use newtons_cradle::physics::period_ratio;
 
@@ -12,35 +17,97 @@ const TOL: f64 = 2e-14;
 #[test]
 fn sn_cn_dn_match_mpmath() {
     let cases = [
-        (0.3, 0.5, [0.29341273316845537748, 0.95598586182778707744, 0.97824050417436120533]),
-        (1.7, 0.9, [0.95223054210801865053, 0.3053800823181972353, 0.42887211987841085076]),
-        (-2.5, 0.25, [-0.74990304990178414367, -0.66154774260668612792, 0.92704441853505625866]),
-        (10.0, 0.99, [-0.99142074486068204993, -0.13070924473766339791, 0.16405504440062637568]),
-        (0.8, 0.999999, [0.66403682446600728062, 0.74769987010370747731, 0.74770016497123049264]),
+        (
+            0.3,
+            0.5,
+            [
+                0.29341273316845537748,
+                0.95598586182778707744,
+                0.97824050417436120533,
+            ],
+        ),
+        (
+            1.7,
+            0.9,
+            [
+                0.95223054210801865053,
+                0.3053800823181972353,
+                0.42887211987841085076,
+            ],
+        ),
+        (
+            -2.5,
+            0.25,
+            [
+                -0.74990304990178414367,
+                -0.66154774260668612792,
+                0.92704441853505625866,
+            ],
+        ),
+        (
+            10.0,
+            0.99,
+            [
+                -0.99142074486068204993,
+                -0.13070924473766339791,
+                0.16405504440062637568,
+            ],
+        ),
+        (
+            0.8,
+            0.999999,
+            [
+                0.66403682446600728062,
+                0.74769987010370747731,
+                0.74770016497123049264,
+            ],
+        ),
     ];
     for (u, m, want) in cases {
         let (sn, cn, dn) = sncndn(u, m);
-        for (got, want, name) in [(sn, want[0], "sn"), (cn, want[1], "cn"), (dn, want[2], "dn")] {
-            assert!((got - want).abs() < TOL, "{name}({u}, {m}) = {got}, mpmath {want}");
+        for (got, want, name) in [
+            (sn, want[0], "sn"),
+            (cn, want[1], "cn"),
+            (dn, want[2], "dn"),
+        ] {
+            assert!(
+                (got - want).abs() < TOL,
+                "{name}({u}, {m}) = {got}, mpmath {want}"
+            );
         }
     }
 }
 
 #[test]
 fn complete_integral_matches_mpmath() {
-    for (m, want) in [(0.5, 1.8540746773013719184), (0.99, 3.6956373629898742386), (0.999999999, 11.747927296421043878)] {
+    for (m, want) in [
+        (0.5, 1.8540746773013719184),
+        (0.99, 3.6956373629898742386),
+        (0.999999999, 11.747927296421043878),
+    ] {
         let got = ellip_k(m);
         // Relative: K grows like ln(4/k') near m = 1, each digit still counts.
-        assert!((got - want).abs() < 1e-14 * want, "K({m}) = {got}, mpmath {want}");
+        assert!(
+            (got - want).abs() < 1e-14 * want,
+            "K({m}) = {got}, mpmath {want}"
+        );
     }
     assert_eq!(ellip_k(0.0), std::f64::consts::FRAC_PI_2);
 }
 
 #[test]
 fn incomplete_integral_matches_mpmath_and_inverts_sn() {
-    for (phi, m, want) in [(0.7, 0.5, 0.72877030571819021448), (1.5, 0.99, 3.036014097339709753), (-1.2, 0.3, -1.2748327603866130484), (4.0, 0.8, 5.467873527678046577)] {
+    for (phi, m, want) in [
+        (0.7, 0.5, 0.72877030571819021448),
+        (1.5, 0.99, 3.036014097339709753),
+        (-1.2, 0.3, -1.2748327603866130484),
+        (4.0, 0.8, 5.467873527678046577),
+    ] {
         let got = ellip_f(phi, m);
-        assert!((got - want).abs() < 1e-14 * want.abs(), "F({phi}|{m}) = {got}, mpmath {want}");
+        assert!(
+            (got - want).abs() < 1e-14 * want.abs(),
+            "F({phi}|{m}) = {got}, mpmath {want}"
+        );
     }
     // phase_of is the inverse of (sn, cn) over a whole period.
     for i in -20..20 {
@@ -49,7 +116,10 @@ fn incomplete_integral_matches_mpmath_and_inverts_sn() {
         let (sn, cn, _) = sncndn(u, m);
         let back = phase_of(sn, cn, m);
         let (sn2, cn2, _) = sncndn(back, m);
-        assert!((sn2 - sn).abs() < TOL && (cn2 - cn).abs() < TOL, "u = {u}: phase {back}");
+        assert!(
+            (sn2 - sn).abs() < TOL && (cn2 - cn).abs() < TOL,
+            "u = {u}: phase {back}"
+        );
     }
 }
 

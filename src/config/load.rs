@@ -25,7 +25,9 @@ impl ConfigSource {
     pub fn resolve(flag: Option<&Path>) -> Self {
         match flag {
             Some(p) => Self::File(p.to_path_buf()),
-            None if Path::new("assets/cradle.ron").is_file() => Self::File(PathBuf::from("assets/cradle.ron")),
+            None if Path::new("assets/cradle.ron").is_file() => {
+                Self::File(PathBuf::from("assets/cradle.ron"))
+            }
             None => Self::Builtin,
         }
     }
@@ -87,7 +89,9 @@ fn invalid_message(file: &str, errors: &[(Option<(usize, usize)>, FieldError)]) 
         .iter()
         .map(|(at, e)| match at {
             Some((l, c)) => format!("{file}:{l}:{c}: {e}"),
-            None => format!("{file}: {e} (not in the file: its default conflicts with another field)"),
+            None => {
+                format!("{file}: {e} (not in the file: its default conflicts with another field)")
+            }
         })
         .collect::<Vec<_>>()
         .join("\n")
@@ -99,7 +103,10 @@ fn invalid_message(file: &str, errors: &[(Option<(usize, usize)>, FieldError)]) 
 /// See [`ConfigSource::load`].
 pub fn load_file(path: &Path) -> Result<Config, ConfigError> {
     let file = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|source| ConfigError::Read { file: file.clone(), source })?;
+    let bytes = std::fs::read(path).map_err(|source| ConfigError::Read {
+        file: file.clone(),
+        source,
+    })?;
     let src = String::from_utf8(bytes).map_err(|_| ConfigError::NotText { file: file.clone() })?;
     parse(&src, &file)
 }
@@ -109,7 +116,8 @@ pub fn load_file(path: &Path) -> Result<Config, ConfigError> {
 /// # Errors
 /// See [`ConfigSource::load`].
 pub fn parse(src: &str, file: &str) -> Result<Config, ConfigError> {
-    let options = ron::Options::default().with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME);
+    let options =
+        ron::Options::default().with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME);
     let config: Config = options.from_str(src).map_err(|e| ConfigError::Syntax {
         file: file.to_owned(),
         line: e.span.start.line,
@@ -118,7 +126,10 @@ pub fn parse(src: &str, file: &str) -> Result<Config, ConfigError> {
     })?;
     config.validate().map_err(|errs| ConfigError::Invalid {
         file: file.to_owned(),
-        errors: errs.into_iter().map(|e| (locate(src, &e.path), e)).collect(),
+        errors: errs
+            .into_iter()
+            .map(|e| (locate(src, &e.path), e))
+            .collect(),
     })?;
     Ok(config)
 }

@@ -52,13 +52,25 @@ pub fn locate(src: &str, path: &str) -> Option<(usize, usize)> {
         let line = line_starts.partition_point(|&s| s <= i);
         (line, i - line_starts[line - 1] + 1)
     };
-    let mut stack = vec![Frame { seg: None, is_list: false, index: 0, pending_key: None }];
+    let mut stack = vec![Frame {
+        seg: None,
+        is_list: false,
+        index: 0,
+        pending_key: None,
+    }];
     let mut best: Option<(usize, (usize, usize))> = None;
     let path_of = |stack: &[Frame], last: Option<Seg>| -> Vec<Seg> {
-        stack.iter().filter_map(|f| f.seg.clone()).chain(last).collect()
+        stack
+            .iter()
+            .filter_map(|f| f.seg.clone())
+            .chain(last)
+            .collect()
     };
     let consider = |segs: Vec<Seg>, at: usize, best: &mut Option<(usize, (usize, usize))>| {
-        if segs.len() <= target.len() && target[..segs.len()] == segs[..] && best.is_none_or(|(d, _)| segs.len() > d) {
+        if segs.len() <= target.len()
+            && target[..segs.len()] == segs[..]
+            && best.is_none_or(|(d, _)| segs.len() > d)
+        {
             *best = Some((segs.len(), pos_of(at)));
         }
         segs == target
@@ -110,12 +122,15 @@ pub fn locate(src: &str, path: &str) -> Option<(usize, usize)> {
                 {
                     return best.map(|(_, p)| p);
                 }
-                stack.push(Frame { seg, is_list: c == '[', index: 0, pending_key: None });
+                stack.push(Frame {
+                    seg,
+                    is_list: c == '[',
+                    index: 0,
+                    pending_key: None,
+                });
             }
-            ')' | ']' | '}' => {
-                if stack.len() > 1 {
-                    stack.pop();
-                }
+            ')' | ']' | '}' if stack.len() > 1 => {
+                stack.pop();
             }
             ',' => {
                 let top = stack.last_mut().expect("the root frame is never popped");
@@ -126,7 +141,8 @@ pub fn locate(src: &str, path: &str) -> Option<(usize, usize)> {
             }
             c if c.is_alphabetic() || c == '_' => {
                 let start = i;
-                while i + 1 < chars.len() && (chars[i + 1].is_alphanumeric() || chars[i + 1] == '_') {
+                while i + 1 < chars.len() && (chars[i + 1].is_alphanumeric() || chars[i + 1] == '_')
+                {
                     i += 1;
                 }
                 let name: String = chars[start..=i].iter().collect();
@@ -139,7 +155,10 @@ pub fn locate(src: &str, path: &str) -> Option<(usize, usize)> {
                     if consider(path_of(&stack, Some(key)), start, &mut best) {
                         return best.map(|(_, p)| p);
                     }
-                    stack.last_mut().expect("the root frame is never popped").pending_key = Some(name);
+                    stack
+                        .last_mut()
+                        .expect("the root frame is never popped")
+                        .pending_key = Some(name);
                 }
             }
             _ => {}

@@ -238,9 +238,17 @@ pub enum LightConfig {
     Ambient { color: Rgb, intensity: f64 },
     /// A point at `position` (m); falls off with no distance law (like the course
     /// project), shadowed.
-    Point { position: Vec3, color: Rgb, intensity: f64 },
+    Point {
+        position: Vec3,
+        color: Rgb,
+        intensity: f64,
+    },
     /// Parallel light travelling along `direction` (non-zero), shadowed.
-    Directional { direction: Vec3, color: Rgb, intensity: f64 },
+    Directional {
+        direction: Vec3,
+        color: Rgb,
+        intensity: f64,
+    },
 }
 
 /// Default lights: ambient plus two point lights, key and fill.

@@ -18,7 +18,11 @@ pub struct FieldError {
 
 impl fmt::Display for FieldError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "`{}` is {}; allowed: {}", self.path, self.found, self.allowed)
+        write!(
+            f,
+            "`{}` is {}; allowed: {}",
+            self.path, self.found, self.allowed
+        )
     }
 }
 
@@ -58,13 +62,28 @@ impl Checker {
     fn material(&mut self, path: &str, m: &MaterialConfig) {
         self.rgb(&format!("{path}.color"), m.color);
         if let Some(e) = m.specular {
-            self.num(&format!("{path}.specular"), e, (1.0..=10000.0).contains(&e), "None or 1..=10000");
+            self.num(
+                &format!("{path}.specular"),
+                e,
+                (1.0..=10000.0).contains(&e),
+                "None or 1..=10000",
+            );
         }
-        self.num(&format!("{path}.reflective"), m.reflective, (0.0..=1.0).contains(&m.reflective), "0..=1");
+        self.num(
+            &format!("{path}.reflective"),
+            m.reflective,
+            (0.0..=1.0).contains(&m.reflective),
+            "0..=1",
+        );
         if let Some(c) = m.checker {
             self.rgb(&format!("{path}.checker"), c);
         }
-        self.num(&format!("{path}.checker_size"), m.checker_size, m.checker_size > 0.0, "> 0 (m)");
+        self.num(
+            &format!("{path}.checker_size"),
+            m.checker_size,
+            m.checker_size > 0.0,
+            "> 0 (m)",
+        );
     }
 }
 
@@ -81,40 +100,97 @@ impl Config {
         }
         c.num("cradle.radius", k.radius, k.radius > 0.0, "> 0 (m)");
         c.num("cradle.density", k.density, k.density > 0.0, "> 0 (kg/m^3)");
-        c.num("cradle.length", k.length, k.length > k.radius, &format!("> radius = {} (m)", k.radius));
-        c.num("cradle.gap", k.gap, k.gap >= 0.0, ">= 0 (m)");
+        // Checks against the radius only make sense once the radius itself is valid;
+        // otherwise one typo would report four fields.
+        let r_ok = k.radius.is_finite() && k.radius > 0.0;
+        let r = if r_ok { k.radius } else { 0.0 };
         c.num(
-            "cradle.pivot_height",
-            k.pivot_height,
-            k.pivot_height > k.length + k.radius,
-            &format!("> length + radius = {} (m), so balls clear the floor", k.length + k.radius),
+            "cradle.length",
+            k.length,
+            !r_ok || k.length > r,
+            &format!("> radius = {r} (m)"),
         );
-        c.num("cradle.rail_spread", k.rail_spread, k.rail_spread > k.radius, &format!("> radius = {} (m)", k.radius));
+        c.num("cradle.gap", k.gap, k.gap >= 0.0, ">= 0 (m)");
+        if k.length.is_finite() {
+            c.num(
+                "cradle.pivot_height",
+                k.pivot_height,
+                k.pivot_height > k.length + r,
+                &format!(
+                    "> length + radius = {} (m), so balls clear the floor",
+                    k.length + r
+                ),
+            );
+        }
+        c.num(
+            "cradle.rail_spread",
+            k.rail_spread,
+            !r_ok || k.rail_spread > r,
+            &format!("> radius = {r} (m)"),
+        );
         c.num("cradle.gravity", k.gravity, k.gravity > 0.0, "> 0 (m/s^2)");
         c.num(
             "cradle.string_radius",
             k.string_radius,
-            k.string_radius > 0.0 && k.string_radius < k.radius,
-            &format!("> 0 and < radius = {} (m)", k.radius),
+            k.string_radius > 0.0 && (!r_ok || k.string_radius < r),
+            &format!("> 0 and < radius = {r} (m)"),
         );
-        c.num("cradle.frame_radius", k.frame_radius, k.frame_radius > 0.0, "> 0 (m)");
+        c.num(
+            "cradle.frame_radius",
+            k.frame_radius,
+            k.frame_radius > 0.0,
+            "> 0 (m)",
+        );
 
         let s = &self.start;
-        if s.lift > k.balls {
-            c.fail("start.lift", s.lift, &format!("0..={} (the number of balls)", k.balls));
+        if (1..=200).contains(&k.balls) && s.lift > k.balls {
+            c.fail(
+                "start.lift",
+                s.lift,
+                &format!("0..={} (the number of balls)", k.balls),
+            );
         }
-        c.num("start.angle_deg", s.angle_deg, (0.0..180.0).contains(&s.angle_deg), "0 <= angle < 180 (degrees)");
+        c.num(
+            "start.angle_deg",
+            s.angle_deg,
+            (0.0..180.0).contains(&s.angle_deg),
+            "0 <= angle < 180 (degrees)",
+        );
 
         let ct = &self.contact;
         if ct.model == ContactModel::Hertz {
-            c.fail("contact.model", "hertz", "ideal (Hertz contact is planned but not built yet)");
+            c.fail(
+                "contact.model",
+                "hertz",
+                "ideal (Hertz contact is planned but not built yet)",
+            );
         }
-        c.num("contact.restitution", ct.restitution, (0.0..=1.0).contains(&ct.restitution), "0..=1");
-        c.num("contact.youngs_modulus", ct.youngs_modulus, ct.youngs_modulus > 0.0, "> 0 (Pa)");
-        c.num("contact.poisson_ratio", ct.poisson_ratio, (0.0..0.5).contains(&ct.poisson_ratio), "0 <= nu < 0.5");
+        c.num(
+            "contact.restitution",
+            ct.restitution,
+            (0.0..=1.0).contains(&ct.restitution),
+            "0..=1",
+        );
+        c.num(
+            "contact.youngs_modulus",
+            ct.youngs_modulus,
+            ct.youngs_modulus > 0.0,
+            "> 0 (Pa)",
+        );
+        c.num(
+            "contact.poisson_ratio",
+            ct.poisson_ratio,
+            (0.0..0.5).contains(&ct.poisson_ratio),
+            "0 <= nu < 0.5",
+        );
 
         let dt = self.physics.dt;
-        c.num("physics.dt", dt, (1e-7..=0.1).contains(&dt), "1e-7..=0.1 (s)");
+        c.num(
+            "physics.dt",
+            dt,
+            (1e-7..=0.1).contains(&dt),
+            "1e-7..=0.1 (s)",
+        );
 
         let r = &self.render;
         if !(16..=8192).contains(&r.width) {
@@ -138,9 +214,18 @@ impl Config {
         c.vec3("camera.position", cam.position);
         c.vec3("camera.look_at", cam.look_at);
         if cam.position == cam.look_at {
-            c.fail("camera.look_at", cam.look_at, "a point other than camera.position");
+            c.fail(
+                "camera.look_at",
+                cam.look_at,
+                "a point other than camera.position",
+            );
         }
-        c.num("camera.fov_deg", cam.fov_deg, (1.0..=170.0).contains(&cam.fov_deg), "1..=170 (degrees)");
+        c.num(
+            "camera.fov_deg",
+            cam.fov_deg,
+            (1.0..=170.0).contains(&cam.fov_deg),
+            "1..=170 (degrees)",
+        );
 
         if self.lights.len() > 16 {
             c.fail("lights", self.lights.len(), "at most 16 lights");
@@ -149,11 +234,19 @@ impl Config {
             let p = format!("lights[{i}]");
             let (color, intensity) = match light {
                 LightConfig::Ambient { color, intensity } => (color, intensity),
-                LightConfig::Point { position, color, intensity } => {
+                LightConfig::Point {
+                    position,
+                    color,
+                    intensity,
+                } => {
                     c.vec3(&format!("{p}.position"), *position);
                     (color, intensity)
                 }
-                LightConfig::Directional { direction, color, intensity } => {
+                LightConfig::Directional {
+                    direction,
+                    color,
+                    intensity,
+                } => {
                     c.vec3(&format!("{p}.direction"), *direction);
                     if direction.iter().all(|x| *x == 0.0) {
                         c.fail(&format!("{p}.direction"), direction, "a non-zero direction");
@@ -162,7 +255,12 @@ impl Config {
                 }
             };
             c.rgb(&format!("{p}.color"), *color);
-            c.num(&format!("{p}.intensity"), *intensity, *intensity >= 0.0, ">= 0");
+            c.num(
+                &format!("{p}.intensity"),
+                *intensity,
+                *intensity >= 0.0,
+                ">= 0",
+            );
         }
 
         let m = &self.materials;

@@ -14,7 +14,8 @@ use super::params::CradleParams;
 pub fn gap_fn(p: &CradleParams, theta_a: f64, theta_b: f64) -> f64 {
     let s = (0.5 * (theta_b - theta_a)).sin();
     let mean = 0.5 * (theta_a + theta_b);
-    p.gap * (p.gap + 4.0 * p.radius) + 4.0 * p.length * s * (p.spacing() * mean.cos() + p.length * s)
+    p.gap * (p.gap + 4.0 * p.radius)
+        + 4.0 * p.length * s * (p.spacing() * mean.cos() + p.length * s)
 }
 
 /// Unit contact normal from ball `a` to ball `b = a + 1` and the levers
@@ -59,7 +60,13 @@ pub struct Resolution {
 
 /// Applies the impulse of one impact between balls `a` and `a + 1`. Returns true when
 /// it was an impact (closing faster than the rest speed) rather than resting contact.
-pub fn impact(p: &CradleParams, r: &Resolution, theta: &mut [f64], omega: &mut [f64], a: usize) -> bool {
+pub fn impact(
+    p: &CradleParams,
+    r: &Resolution,
+    theta: &mut [f64],
+    omega: &mut [f64],
+    a: usize,
+) -> bool {
     let b = a + 1;
     // Touching balls (gap 0) at angles equal to round-off collide at equal angles:
     // put the faster on the slower's angle (a shift of the root-finding error, ~1e-16
@@ -73,7 +80,11 @@ pub fn impact(p: &CradleParams, r: &Resolution, theta: &mut [f64], omega: &mut [
     }
     let vn = closing_speed(p, (theta[a], omega[a]), (theta[b], omega[b]));
     let counted = -vn >= r.rest_speed;
-    let e = if counted || r.restitution == 1.0 { r.restitution } else { 0.0 };
+    let e = if counted || r.restitution == 1.0 {
+        r.restitution
+    } else {
+        0.0
+    };
     if theta[a] == theta[b] && p.gap == 0.0 {
         // Equal levers: the impulse is symmetric; write it so that e = 1 swaps and
         // e = 0 equalises exactly.
@@ -95,22 +106,42 @@ pub fn impact(p: &CradleParams, r: &Resolution, theta: &mut [f64], omega: &mut [
     counted
 }
 
+/// What one resolution did: balls whose state changed, and pairs whose last
+/// impulse was a resting contact (slower than the rest speed).
+#[derive(Debug, Clone)]
+pub struct Outcome {
+    /// Per ball: its angular velocity (or angle, when snapped) changed.
+    pub changed: Vec<bool>,
+    /// Per pair `(a, a+1)`: `Some(true)` resting contact, `Some(false)` impact, `None` untouched.
+    pub resting: Vec<Option<bool>>,
+    /// Impacts (resting contacts excluded).
+    pub impacts: u64,
+}
+
 /// Resolves impact `first` (between balls `first` and `first + 1`), then every
 /// touching pair that still approaches, fastest first, until none does: a striker
-/// passes through a touching chain pair by pair. Marks `changed` balls; returns the
-/// number of impacts (resting contacts excluded).
+/// passes through a touching chain pair by pair.
 pub fn resolve(
     p: &CradleParams,
     r: &Resolution,
     theta: &mut [f64],
     omega: &mut [f64],
     first: usize,
-    changed: &mut [bool],
-) -> u64 {
+) -> Outcome {
     let n = theta.len();
-    let mut impacts = u64::from(impact(p, r, theta, omega, first));
-    changed[first] = true;
-    changed[first + 1] = true;
+    let mut out = Outcome {
+        changed: vec![false; n],
+        resting: vec![None; n.saturating_sub(1)],
+        impacts: 0,
+    };
+    let hit = |a: usize, theta: &mut [f64], omega: &mut [f64], out: &mut Outcome| {
+        let counted = impact(p, r, theta, omega, a);
+        out.impacts += u64::from(counted);
+        out.resting[a] = Some(!counted);
+        out.changed[a] = true;
+        out.changed[a + 1] = true;
+    };
+    hit(first, theta, omega, &mut out);
     // Each pass removes one approaching pair; a chain of n balls with k strikers
     // needs about k (n - k) passes, far below this bound, which only guards the
     // geometric tail of restitution < 1.
@@ -129,11 +160,9 @@ pub fn resolve(
             }
         }
         let Some((a, _)) = worst else {
-            return impacts;
+            return out;
         };
-        impacts += u64::from(impact(p, r, theta, omega, a));
-        changed[a] = true;
-        changed[a + 1] = true;
+        hit(a, theta, omega, &mut out);
     }
-    impacts
+    out
 }

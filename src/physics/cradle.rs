@@ -37,14 +37,26 @@ impl Cradle {
     /// A cradle whose `lift` leftmost balls are released from `-angle` (rad) at t = 0.
     /// `dt` (s) is the step of fixed-step integrators; `Exact` ignores it.
     #[must_use]
-    pub fn new(params: CradleParams, integrator: Integrator, dt: f64, lift: usize, angle: f64) -> Self {
+    pub fn new(
+        params: CradleParams,
+        integrator: Integrator,
+        dt: f64,
+        lift: usize,
+        angle: f64,
+    ) -> Self {
         let (theta, omega) = lifted_start(params.balls, lift, angle);
         Self::from_state(params, integrator, dt, &theta, &omega)
     }
 
     /// A cradle starting from any state at t = 0.
     #[must_use]
-    pub fn from_state(params: CradleParams, integrator: Integrator, dt: f64, theta: &[f64], omega: &[f64]) -> Self {
+    pub fn from_state(
+        params: CradleParams,
+        integrator: Integrator,
+        dt: f64,
+        theta: &[f64],
+        omega: &[f64],
+    ) -> Self {
         let energy0 = params.energy(theta, omega);
         // The fastest a ball can go is when all the energy is in one ball at the
         // bottom; the rest speed is a tiny fraction of that.
@@ -56,7 +68,9 @@ impl Cradle {
         };
         let engine = match integrator {
             Integrator::Exact => Engine::Exact(ExactEngine::new(params, resolution, theta, omega)),
-            method => Engine::Stepped(SteppedEngine::new(params, resolution, method, dt, theta, omega)),
+            method => Engine::Stepped(SteppedEngine::new(
+                params, resolution, method, dt, theta, omega,
+            )),
         };
         Self {
             params,

@@ -25,6 +25,11 @@ const WINDOWS_PER_PERIOD: f64 = 32.0;
 /// coarser.
 const TIME_TOL: f64 = 1e-14;
 
+/// Sustained contact (balls pressed together by gravity, as when one rests on its
+/// neighbour at large angles) is stepped with impulses this fraction of a
+/// small-angle period apart: the overlap stays below ~g (1e-3 T)^2, a few um.
+const CONTACT_STEP: f64 = 1e-3;
+
 /// The exact event-driven solver.
 #[derive(Debug, Clone)]
 pub struct ExactEngine {
@@ -40,6 +45,10 @@ pub struct ExactEngine {
     scanned: u64,
     /// Pairs `(a, a+1)` that can collide before the next event.
     active: Vec<usize>,
+    /// Per pair: the time of its last impulse if that was a resting contact.
+    rest_since: Vec<Option<f64>>,
+    /// Impulse step of sustained contact (s).
+    contact_step: f64,
     collisions: u64,
     events: u64,
 }
@@ -62,6 +71,8 @@ impl ExactEngine {
             window: 0.0,
             scanned: 0,
             active: Vec::new(),
+            rest_since: vec![None; theta.len().saturating_sub(1)],
+            contact_step: CONTACT_STEP * std::f64::consts::TAU / w0,
             collisions: 0,
             events: 0,
         };
@@ -71,8 +82,15 @@ impl ExactEngine {
         let mut changed = vec![false; th.len()];
         for a in 0..th.len().saturating_sub(1) {
             let touching = contact::gap_fn(&params, th[a], th[a + 1]) <= 0.0;
-            if touching && contact::closing_speed(&params, (th[a], om[a]), (th[a + 1], om[a + 1])) < 0.0 {
-                engine.collisions += contact::resolve(&params, &resolution, &mut th, &mut om, a, &mut changed);
+            if touching
+                && contact::closing_speed(&params, (th[a], om[a]), (th[a + 1], om[a + 1])) < 0.0
+            {
+                let out = contact::resolve(&params, &resolution, &mut th, &mut om, a);
+                engine.collisions += out.impacts;
+                changed
+                    .iter_mut()
+                    .zip(&out.changed)
+                    .for_each(|(c, o)| *c |= o);
             }
         }
         engine.refly(&th, &om, &changed);
@@ -122,13 +140,52 @@ impl ExactEngine {
         contact::gap_rate(&self.params, sa, sb)
     }
 
+    /// True when pair `a` overlaps (or touches) and approaches at `t`.
+    fn pressing(&self, a: usize, t: f64) -> bool {
+        let (sa, sb) = self.pair_state(a, t);
+        contact::gap_fn(&self.params, sa.0, sb.0) <= 0.0
+            && contact::closing_speed(&self.params, sa, sb) < 0.0
+    }
+
     /// The earliest impact of pair `a` inside `[t0, t1]`, if any.
     fn impact_in(&self, a: usize, t0: f64, t1: f64) -> Option<f64> {
+        let step = self.contact_step;
+        // After a resting contact the pair is in sustained contact: its next
+        // impulse comes no sooner than one contact step later.
+        let not_before = self.rest_since[a].map_or(t0, |tr| t0.max(tr + step));
+        if not_before >= t1 {
+            return None;
+        }
+        let mut t0 = not_before;
+        if self.rest_since[a].is_some() || self.gap_at(a, t0) <= 0.0 {
+            // Touching or overlapping: step on the grid anchored at the last event
+            // until the pair presses (an impulse) or comes apart (a free flight).
+            let mut j = ((t0 - self.t_event) / step).ceil().max(0.0);
+            loop {
+                let s = self.t_event + j * step;
+                if s > t1 {
+                    return None;
+                }
+                if s >= t0 {
+                    if self.pressing(a, s) {
+                        return Some(s);
+                    }
+                    if self.gap_at(a, s) > 0.0 {
+                        t0 = s;
+                        break;
+                    }
+                }
+                j += 1.0;
+            }
+        }
+        self.free_impact_in(a, t0, t1)
+    }
+
+    /// The earliest impact of pair `a` inside `[t0, t1]` given it is apart at `t0`.
+    fn free_impact_in(&self, a: usize, t0: f64, t1: f64) -> Option<f64> {
         let tol = TIME_TOL.max(4.0 * f64::EPSILON * t1.abs());
         let (h0, h1) = (self.gap_at(a, t0), self.gap_at(a, t1));
         if h0 <= 0.0 {
-            // Touching at the window's start: only right after an impact, when the
-            // pair separates (or rests). A later window starts it positive.
             return None;
         }
         if h1 <= 0.0 {
@@ -138,10 +195,7 @@ impl ExactEngine {
         let (d0, d1) = (self.gap_rate_at(a, t0), self.gap_rate_at(a, t1));
         if d0 < 0.0 && d1 > 0.0 {
             let tmin = rising_root(|t| self.gap_rate_at(a, t), t0, t1, tol);
-            // A dip that overlaps by less than 1e-12 of a radius is a graze at
-            // round-off level (e.g. right after a resting contact): not an impact.
-            let graze = 4e-12 * self.params.radius * self.params.radius;
-            if self.gap_at(a, tmin) < -graze {
+            if self.gap_at(a, tmin) <= 0.0 {
                 return Some(falling_root(|t| self.gap_at(a, t), t0, tmin, tol));
             }
         }
@@ -173,11 +227,22 @@ impl ExactEngine {
 
     fn apply(&mut self, te: f64, a: usize) {
         let (mut th, mut om) = self.state_now(te);
-        let mut changed = vec![false; th.len()];
-        self.collisions += contact::resolve(&self.params, &self.resolution, &mut th, &mut om, a, &mut changed);
+        tracing::trace!(te, a, "impact");
+        let out = contact::resolve(&self.params, &self.resolution, &mut th, &mut om, a);
+        self.collisions += out.impacts;
         self.events += 1;
         self.t_event = te;
-        self.refly(&th, &om, &changed);
+        for (a, since) in self.rest_since.iter_mut().enumerate() {
+            *since = match out.resting[a] {
+                Some(true) => Some(te),
+                // A real impact, or a ball of the pair kicked by another pair's
+                // impulse: no longer a slow contact, so no step to wait for.
+                Some(false) => None,
+                None if out.changed[a] || out.changed[a + 1] => None,
+                None => *since,
+            };
+        }
+        self.refly(&th, &om, &out.changed);
     }
 
     /// State at `t` (>= every earlier call's `t`): angles (rad) and angular velocities

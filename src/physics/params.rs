@@ -84,8 +84,7 @@ impl CradleParams {
     /// Small-angle angular frequency (rad/s): `sqrt(g L / (L^2 + 2 r^2 / 5))`.
     #[must_use]
     pub fn w0(&self) -> f64 {
-        (self.gravity * self.length
-            / (self.length * self.length + 0.4 * self.radius * self.radius))
+        (self.gravity * self.length / (self.length * self.length + 0.4 * self.radius * self.radius))
             .sqrt()
     }
 

@@ -95,7 +95,11 @@ impl SteppedEngine {
         let p = &self.params;
         contact::gap_fn(p, before[a], before[a + 1]) > 0.0
             && contact::gap_fn(p, after.0[a], after.0[a + 1]) <= 0.0
-            && contact::closing_speed(p, (after.0[a], after.1[a]), (after.0[a + 1], after.1[a + 1])) < 0.0
+            && contact::closing_speed(
+                p,
+                (after.0[a], after.1[a]),
+                (after.0[a + 1], after.1[a + 1]),
+            ) < 0.0
     }
 
     /// Advances `(theta, omega)` by `h`, resolving impacts inside; returns impacts.
@@ -127,8 +131,8 @@ impl SteppedEngine {
                 }
             }
             let (mut tc, mut wc) = self.step_all(theta, omega, hi * h);
-            let mut changed = vec![false; theta.len()];
-            impacts += contact::resolve(&self.params, &self.resolution, &mut tc, &mut wc, first, &mut changed);
+            impacts +=
+                contact::resolve(&self.params, &self.resolution, &mut tc, &mut wc, first).impacts;
             *theta = tc;
             *omega = wc;
             h *= 1.0 - hi;
@@ -144,7 +148,10 @@ impl SteppedEngine {
         // Tolerate t a hair below a grid point (n*every vs m*dt rounding).
         let target = ((t / self.dt) * (1.0 + 1e-12)).floor() as u64;
         while self.steps < target {
-            let (mut th, mut om) = (std::mem::take(&mut self.theta), std::mem::take(&mut self.omega));
+            let (mut th, mut om) = (
+                std::mem::take(&mut self.theta),
+                std::mem::take(&mut self.omega),
+            );
             self.collisions += self.advance(&mut th, &mut om, self.dt);
             self.theta = th;
             self.omega = om;

@@ -37,7 +37,11 @@ pub fn frame_schedule() -> Schedule {
             .in_set(FrameSet::Input),
     );
     schedule.add_systems(
-        (systems::step_physics, systems::place_balls, systems::place_strands)
+        (
+            systems::step_physics,
+            systems::place_balls,
+            systems::place_strands,
+        )
             .chain()
             .in_set(FrameSet::Physics),
     );

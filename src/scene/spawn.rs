@@ -2,8 +2,8 @@
 //! frame's rods, the floor, lights and camera, plus the physics resources.
 
 use super::components::{
-    ActiveConfig, Ball, CameraRes, CradleState, FlatScene, Floor, Light, Material, Pendulum, Rod, Shape,
-    SimClock, SimState, Strand, StrandOf, Transform,
+    ActiveConfig, Ball, CameraRes, CradleState, FlatScene, Floor, Light, Material, Pendulum, Rod,
+    Shape, SimClock, SimState, Strand, StrandOf, Transform,
 };
 use crate::config::{Config, MaterialConfig};
 use crate::physics::Cradle;
@@ -114,7 +114,11 @@ fn insert_resources(world: &mut World, config: &Config) {
         snapshot,
     });
     world.insert_resource(SimClock::default());
-    world.insert_resource(if config.start.running { SimState::Running } else { SimState::Paused });
+    world.insert_resource(if config.start.running {
+        SimState::Running
+    } else {
+        SimState::Paused
+    });
     world.insert_resource(ActiveConfig(config.clone()));
     world.insert_resource(CameraRes(config.camera.clone()));
     world.init_resource::<FlatScene>();
@@ -124,14 +128,20 @@ fn spawn_entities(world: &mut World, config: &Config) {
     let c = &config.cradle;
     let m = &config.materials;
     let layout = Layout::new(config);
-    let (ball_mat, string_mat, frame_mat) = (material(&m.ball), material(&m.string), material(&m.frame));
-    let (theta, _) = crate::physics::params::lifted_start(c.balls, config.start.lift, config.lift_angle());
+    let (ball_mat, string_mat, frame_mat) =
+        (material(&m.ball), material(&m.string), material(&m.frame));
+    let (theta, _) =
+        crate::physics::params::lifted_start(c.balls, config.start.lift, config.lift_angle());
     for (i, &th) in theta.iter().enumerate() {
         let pivot = layout.pivot(i);
         let ball = ball_transform(pivot, c.length, th);
         world.spawn((
             Ball,
-            Pendulum { index: i, pivot, length: c.length },
+            Pendulum {
+                index: i,
+                pivot,
+                length: c.length,
+            },
             ball,
             Shape::Sphere { radius: c.radius },
             ball_mat,
@@ -143,14 +153,30 @@ fn spawn_entities(world: &mut World, config: &Config) {
                 Strand,
                 StrandOf { ball: i, anchor },
                 Transform::segment(anchor, top),
-                Shape::Cylinder { radius: c.string_radius, length: (top - anchor).length() },
+                Shape::Cylinder {
+                    radius: c.string_radius,
+                    length: (top - anchor).length(),
+                },
                 string_mat,
             ));
         }
     }
-    let (x, h, s, fr) = (layout.half_width, c.pivot_height, c.rail_spread, c.frame_radius);
+    let (x, h, s, fr) = (
+        layout.half_width,
+        c.pivot_height,
+        c.rail_spread,
+        c.frame_radius,
+    );
     let mut rod = |a: DVec3, b: DVec3| {
-        world.spawn((Rod, Transform::segment(a, b), Shape::Cylinder { radius: fr, length: (b - a).length() }, frame_mat));
+        world.spawn((
+            Rod,
+            Transform::segment(a, b),
+            Shape::Cylinder {
+                radius: fr,
+                length: (b - a).length(),
+            },
+            frame_mat,
+        ));
     };
     for z in [-s, s] {
         // Top rail, base rail and the two posts of each side.
@@ -164,7 +190,12 @@ fn spawn_entities(world: &mut World, config: &Config) {
         rod(DVec3::new(px, h, -s), DVec3::new(px, h, s));
         rod(DVec3::new(px, fr, -s), DVec3::new(px, fr, s));
     }
-    world.spawn((Floor, Transform::at(DVec3::ZERO), Shape::Plane, material(&m.floor)));
+    world.spawn((
+        Floor,
+        Transform::at(DVec3::ZERO),
+        Shape::Plane,
+        material(&m.floor),
+    ));
     for light in &config.lights {
         world.spawn(Light(light.clone()));
     }

@@ -1,8 +1,8 @@
 //! The frame's systems, in schedule order: input, physics, extract.
 
 use super::components::{
-    ActiveConfig, Ball, CameraRes, Control, CradleState, FlatScene, Light, Material, Pendulum, Shape, SimClock,
-    SimState, Strand, StrandOf, Transform,
+    ActiveConfig, Ball, CameraRes, Control, CradleState, FlatScene, Light, Material, Pendulum,
+    Shape, SimClock, SimState, Strand, StrandOf, Transform,
 };
 use super::spawn::{attach_point, ball_transform};
 use crate::config::LightConfig;
@@ -10,6 +10,27 @@ use crate::physics::Cradle;
 use crate::trace;
 use bevy_ecs::prelude::*;
 use glam::{DVec3, Vec3};
+
+/// Balls as the string system reads them (disjoint from the strings it writes).
+type BallsRead<'w, 's> = Query<
+    'w,
+    's,
+    (&'static Pendulum, &'static Transform, &'static Shape),
+    (With<Ball>, Without<Strand>),
+>;
+
+/// Everything the tracer draws, with whether it moves.
+type Drawables<'w, 's> = Query<
+    'w,
+    's,
+    (
+        &'static Transform,
+        &'static Shape,
+        &'static Material,
+        Has<Ball>,
+        Has<Strand>,
+    ),
+>;
 
 /// Input: applies the user's controls (start/stop, reset).
 pub fn apply_controls(
@@ -39,7 +60,11 @@ pub fn apply_controls(
                 let snapshot = cradle.snapshot(0.0);
                 *sim = CradleState { cradle, snapshot };
                 clock.t = 0.0;
-                *state = if c.start.running { SimState::Running } else { SimState::Paused };
+                *state = if c.start.running {
+                    SimState::Running
+                } else {
+                    SimState::Paused
+                };
             }
         }
     }
@@ -61,7 +86,10 @@ pub fn step_physics(clock: Res<SimClock>, mut sim: ResMut<CradleState>) {
 }
 
 /// Physics: each ball hangs at its pendulum's angle.
-pub fn place_balls(sim: Res<CradleState>, mut balls: Query<(&Pendulum, &mut Transform), With<Ball>>) {
+pub fn place_balls(
+    sim: Res<CradleState>,
+    mut balls: Query<(&Pendulum, &mut Transform), With<Ball>>,
+) {
     if !sim.is_changed() {
         return;
     }
@@ -73,7 +101,7 @@ pub fn place_balls(sim: Res<CradleState>, mut balls: Query<(&Pendulum, &mut Tran
 /// Physics: each string runs from its rail anchor to the top of its ball.
 pub fn place_strands(
     sim: Res<CradleState>,
-    balls: Query<(&Pendulum, &Transform, &Shape), (With<Ball>, Without<Strand>)>,
+    balls: BallsRead,
     mut strands: Query<(&StrandOf, &mut Transform), With<Strand>>,
 ) {
     if !sim.is_changed() {
@@ -100,7 +128,7 @@ fn arr3(a: [f64; 3]) -> Vec3 {
 
 /// Extract: gathers shapes, materials, lights and camera into the flat scene.
 pub fn extract(
-    objects: Query<(&Transform, &Shape, &Material, Has<Ball>, Has<Strand>)>,
+    objects: Drawables,
     lights: Query<&Light>,
     camera: Res<CameraRes>,
     config: Res<ActiveConfig>,
@@ -110,7 +138,10 @@ pub fn extract(
     scene.objects.clear();
     for (t, shape, material, is_ball, is_strand) in &objects {
         let shape = match *shape {
-            Shape::Sphere { radius } => trace::Shape::Sphere { centre: v3(t.translation), radius: radius as f32 },
+            Shape::Sphere { radius } => trace::Shape::Sphere {
+                centre: v3(t.translation),
+                radius: radius as f32,
+            },
             Shape::Cylinder { radius, length } => {
                 let half = t.rotation * DVec3::new(0.0, 0.5 * length, 0.0);
                 trace::Shape::Cylinder {
@@ -119,17 +150,35 @@ pub fn extract(
                     radius: radius as f32,
                 }
             }
-            Shape::Plane => trace::Shape::Plane { point: v3(t.translation), normal: v3(t.rotation * DVec3::Y) },
+            Shape::Plane => trace::Shape::Plane {
+                point: v3(t.translation),
+                normal: v3(t.rotation * DVec3::Y),
+            },
         };
-        scene.objects.push(trace::Object { shape, material: material.0, moving: is_ball || is_strand });
+        scene.objects.push(trace::Object {
+            shape,
+            material: material.0,
+            moving: is_ball || is_strand,
+        });
     }
     scene.lights.clear();
     scene.lights.extend(lights.iter().map(|l| match &l.0 {
-        LightConfig::Ambient { color, intensity } => trace::Light::Ambient { color: arr3(*color) * *intensity as f32 },
-        LightConfig::Point { position, color, intensity } => {
-            trace::Light::Point { position: arr3(*position), color: arr3(*color) * *intensity as f32 }
-        }
-        LightConfig::Directional { direction, color, intensity } => trace::Light::Directional {
+        LightConfig::Ambient { color, intensity } => trace::Light::Ambient {
+            color: arr3(*color) * *intensity as f32,
+        },
+        LightConfig::Point {
+            position,
+            color,
+            intensity,
+        } => trace::Light::Point {
+            position: arr3(*position),
+            color: arr3(*color) * *intensity as f32,
+        },
+        LightConfig::Directional {
+            direction,
+            color,
+            intensity,
+        } => trace::Light::Directional {
             direction: arr3(*direction).normalize(),
             color: arr3(*color) * *intensity as f32,
         },

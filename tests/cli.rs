@@ -1,0 +1,236 @@
+//! The binary's contracts (DESIGN.md): exit codes, located messages, the JSON Lines
+//! of `simulate`, and which asset is used.
+
+use serde_json::Value;
+use std::path::Path;
+use std::process::{Command, Output};
+
+fn run_in(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_newtons-cradle"))
+        .args(args)
+        .current_dir(dir)
+        .env("RUST_LOG", "info")
+        .output()
+        .expect("the binary runs")
+}
+
+fn run(args: &[&str]) -> Output {
+    run_in(Path::new(env!("CARGO_MANIFEST_DIR")), args)
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+fn temp_dir(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("nc-cli-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    dir
+}
+
+#[test]
+fn bad_flags_exit_2_with_the_valid_range() {
+    let cases: [(&[&str], &str); 10] = [
+        (
+            &["--balls", "0"],
+            "--balls 0: not allowed; allowed: 1..=200",
+        ),
+        (
+            &["--balls", "-3"],
+            "--balls -3: not allowed; allowed: 1..=200",
+        ),
+        (&["--lift", "6"], "--lift 6: not allowed; allowed: 0..=5"),
+        (
+            &["--angle", "180"],
+            "--angle 180: not allowed; allowed: 0 <= angle < 180",
+        ),
+        (
+            &["--gap", "-0.01"],
+            "--gap -0.01: not allowed; allowed: >= 0",
+        ),
+        (&["--dt", "0"], "--dt 0: not allowed; allowed: 1e-7..=0.1"),
+        (
+            &["--threads", "-1"],
+            "--threads -1: not allowed; allowed: 0..=256",
+        ),
+        (
+            &["--width", "4"],
+            "--width 4: not allowed; allowed: 16..=8192",
+        ),
+        (&["--every", "0"], "--every 0: not allowed; allowed: > 0"),
+        (
+            &["--duration", "-1"],
+            "--duration -1: not allowed; allowed: 0..=1e7",
+        ),
+    ];
+    for (flags, want) in cases {
+        let mut args = vec!["simulate"];
+        args.extend_from_slice(flags);
+        if !flags.contains(&"--duration") {
+            args.extend_from_slice(&["--duration", "0.1"]);
+        }
+        let o = run(&args);
+        assert_eq!(o.status.code(), Some(2), "{flags:?}: {}", stderr(&o));
+        assert!(stderr(&o).contains(want), "{flags:?}: {}", stderr(&o));
+        assert!(o.stdout.is_empty(), "nothing on stdout for bad input");
+    }
+    let o = run(&["simulate", "--balls", "many"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("--balls"));
+}
+
+#[test]
+fn bad_config_files_exit_2_with_file_line_and_column() {
+    let dir = temp_dir("bad");
+    let cases: [(&str, &[u8], &str); 5] = [
+        (
+            "range.ron",
+            b"(\n  start: (\n    angle_deg: 1e400,\n  ),\n)\n",
+            "range.ron:3:5: `start.angle_deg` is inf; allowed: a finite number",
+        ),
+        (
+            "typo.ron",
+            b"(cradle: (bals: 3))",
+            "typo.ron:1:11: Unexpected field named `bals`",
+        ),
+        ("empty.ron", b"", "empty.ron:1:1"),
+        (
+            "binary.ron",
+            &[0xde, 0xad, 0xbe, 0xef, 0xff, 0x00],
+            "binary.ron: the config is not UTF-8 text",
+        ),
+        ("missing.ron", b"", "missing.ron: cannot read the config"),
+    ];
+    for (name, content, want) in cases {
+        let path = dir.join(name);
+        if name != "missing.ron" {
+            std::fs::write(&path, content).expect("write");
+        }
+        let o = run(&["simulate", "--config", path.to_str().expect("utf-8 path")]);
+        assert_eq!(o.status.code(), Some(2), "{name}: {}", stderr(&o));
+        assert!(stderr(&o).contains(want), "{name}: {}", stderr(&o));
+        assert!(!stderr(&o).contains("panicked"));
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+fn lines(o: &Output) -> Vec<Value> {
+    String::from_utf8(o.stdout.clone())
+        .expect("utf-8")
+        .lines()
+        .map(|l| serde_json::from_str(l).expect("every line is JSON"))
+        .collect()
+}
+
+#[test]
+fn simulate_prints_params_samples_and_summary() {
+    let o = run(&[
+        "simulate",
+        "--duration",
+        "2",
+        "--every",
+        "0.1",
+        "--balls",
+        "4",
+        "--lift",
+        "2",
+        "--gap",
+        "0.001",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let v = lines(&o);
+    assert_eq!(
+        v.len(),
+        1 + 21 + 1,
+        "params, samples at 0, 0.1, .., 2.0, summary"
+    );
+    let p = &v[0]["params"];
+    for key in [
+        "balls",
+        "radius",
+        "length",
+        "gap",
+        "gravity",
+        "mass",
+        "lift",
+        "angle_deg",
+        "contact",
+        "integrator",
+        "dt",
+    ] {
+        assert!(!p[key].is_null(), "params.{key}");
+    }
+    assert_eq!(p["balls"], 4);
+    assert_eq!(p["gap"], 0.001);
+    assert_eq!(p["contact"], "ideal");
+    assert_eq!(p["integrator"], "exact");
+    let mut last_collisions = 0;
+    for (n, s) in v[1..v.len() - 1].iter().enumerate() {
+        // A product, not a running sum: exactly n * 0.1 in f64.
+        assert_eq!(s["t"].as_f64(), Some(n as f64 * 0.1));
+        assert_eq!(s["theta"].as_array().map(Vec::len), Some(4));
+        assert_eq!(s["omega"].as_array().map(Vec::len), Some(4));
+        let c = s["collisions"].as_u64().expect("count");
+        assert!(c >= last_collisions);
+        last_collisions = c;
+    }
+    let sum = &v[v.len() - 1]["summary"];
+    assert_eq!(sum["duration"], 2.0);
+    assert_eq!(sum["collisions"].as_u64(), Some(last_collisions));
+    assert!(last_collisions > 0);
+    assert!(sum["max_energy_rel_error"].as_f64().expect("number") < 1e-12);
+    for key in ["energy_initial", "energy_final", "wall_seconds"] {
+        assert!(sum[key].is_number(), "summary.{key}");
+    }
+}
+
+#[test]
+fn samples_end_at_the_duration_within_rounding() {
+    // 3 * 0.1 = 0.30000000000000004 > 0.3: the last sample still counts.
+    let v = lines(&run(&["simulate", "--duration", "0.3", "--every", "0.1"]));
+    assert_eq!(v.len(), 1 + 4 + 1);
+    let v = lines(&run(&["simulate", "--duration", "1", "--every", "0.3"]));
+    assert_eq!(v.len(), 1 + 4 + 1, "0, 0.3, 0.6, 0.9");
+}
+
+#[test]
+fn numbers_keep_full_precision() {
+    let v = lines(&run(&[
+        "simulate",
+        "--duration",
+        "0",
+        "--every",
+        "1",
+        "--angle",
+        "30",
+    ]));
+    let theta0 = v[1]["theta"][0].as_f64().expect("number");
+    assert_eq!(theta0, -30f64.to_radians(), "round-trips to the same f64");
+}
+
+#[test]
+fn asset_choice_is_logged_and_the_built_in_one_works_anywhere() {
+    let o = run(&["simulate", "--duration", "0"]);
+    assert!(
+        stderr(&o).contains("config: assets/cradle.ron"),
+        "{}",
+        stderr(&o)
+    );
+    let dir = temp_dir("anywhere");
+    let o = run_in(&dir, &["simulate", "--duration", "0"]);
+    assert_eq!(o.status.code(), Some(0));
+    assert!(stderr(&o).contains("built-in"), "{}", stderr(&o));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn run_without_a_window_previews_and_points_to_simulate() {
+    let o = run(&[]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(out.contains("newtons-cradle simulate"), "{out}");
+    assert!(
+        out.lines().filter(|l| l.starts_with('|')).count() >= 10,
+        "text frames: {out}"
+    );
+}
