@@ -182,7 +182,7 @@ mod tests {
 
     #[test]
     fn finds_fields_inside_list_elements() {
-        assert_eq!(locate(SRC, "lights[1].intensity"), Some((9, 51)));
+        assert_eq!(locate(SRC, "lights[1].intensity"), Some((9, 50)));
         assert_eq!(locate(SRC, "lights[0].intensity"), Some((8, 31)));
     }
 
