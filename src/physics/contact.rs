@@ -47,6 +47,15 @@ pub fn gap_rate(p: &CradleParams, a: (f64, f64), b: (f64, f64)) -> f64 {
     2.0 * ((cb.0 - ca.0) * (vb.0 - va.0) + (cb.1 - ca.1) * (vb.1 - va.1))
 }
 
+impl Resolution {
+    /// Closing speeds below this (m/s) are round-off, not approach: 1e-12 of the
+    /// rest speed.
+    #[must_use]
+    pub fn round_off(&self) -> f64 {
+        1e-12 * self.rest_speed
+    }
+}
+
 /// Settings of one contact resolution.
 #[derive(Debug, Clone, Copy)]
 pub struct Resolution {
@@ -58,15 +67,16 @@ pub struct Resolution {
     pub touch: f64,
 }
 
-/// Applies the impulse of one impact between balls `a` and `a + 1`. Returns true when
-/// it was an impact (closing faster than the rest speed) rather than resting contact.
+/// Applies the impulse of one impact between balls `a` and `a + 1`. Returns the
+/// range of balls it changed and whether it was an impact (closing faster than the
+/// rest speed) rather than resting contact.
 pub fn impact(
     p: &CradleParams,
     r: &Resolution,
     theta: &mut [f64],
     omega: &mut [f64],
     a: usize,
-) -> bool {
+) -> (std::ops::RangeInclusive<usize>, bool) {
     let b = a + 1;
     // Touching balls (gap 0) at angles equal to round-off collide at equal angles:
     // put the faster on the slower's angle (a shift of the root-finding error, ~1e-16
@@ -90,6 +100,8 @@ pub fn impact(
         // e = 0 equalises exactly.
         if e == 1.0 {
             omega.swap(a, b);
+        } else if e == 0.0 {
+            return (rest_block(p, r, theta, omega, a), counted);
         } else {
             let mean = 0.5 * (omega[a] + omega[b]);
             let half = 0.5 * e * (omega[b] - omega[a]);
@@ -103,7 +115,33 @@ pub fn impact(
         omega[a] -= lambda * ja;
         omega[b] += lambda * jb;
     }
-    counted
+    (a..=b, counted)
+}
+
+/// Resting contact in a touching chain (gap 0): every ball touching `a` at the same
+/// angle and moving within the rest speed of it joins one block moving at the mean
+/// angular velocity, exactly the same for each, as a perfectly inelastic chain
+/// ends. Pairwise averaging would instead leave differences of an ulp that collide
+/// again and again at one instant. Returns the block.
+fn rest_block(
+    p: &CradleParams,
+    r: &Resolution,
+    theta: &[f64],
+    omega: &mut [f64],
+    a: usize,
+) -> std::ops::RangeInclusive<usize> {
+    let slow = r.rest_speed / p.length;
+    let joins = |i: usize, j: usize| theta[i] == theta[j] && (omega[i] - omega[j]).abs() < slow;
+    let (mut lo, mut hi) = (a, a + 1);
+    while lo > 0 && joins(lo - 1, lo) {
+        lo -= 1;
+    }
+    while hi + 1 < omega.len() && joins(hi, hi + 1) {
+        hi += 1;
+    }
+    let mean = omega[lo..=hi].iter().sum::<f64>() / (hi - lo + 1) as f64;
+    omega[lo..=hi].fill(mean);
+    lo..=hi
 }
 
 /// What one resolution did: balls whose state changed, and pairs whose last
@@ -112,6 +150,8 @@ pub fn impact(
 pub struct Outcome {
     /// Per ball: its angular velocity (or angle, when snapped) changed.
     pub changed: Vec<bool>,
+    /// Per ball: changed by an impact, not only by resting contact.
+    pub kicked: Vec<bool>,
     /// Per pair `(a, a+1)`: `Some(true)` resting contact, `Some(false)` impact, `None` untouched.
     pub resting: Vec<Option<bool>>,
     /// Impacts (resting contacts excluded).
@@ -131,17 +171,31 @@ pub fn resolve(
     let n = theta.len();
     let mut out = Outcome {
         changed: vec![false; n],
+        kicked: vec![false; n],
         resting: vec![None; n.saturating_sub(1)],
         impacts: 0,
     };
     let hit = |a: usize, theta: &mut [f64], omega: &mut [f64], out: &mut Outcome| {
-        let counted = impact(p, r, theta, omega, a);
+        let (balls, counted) = impact(p, r, theta, omega, a);
         out.impacts += u64::from(counted);
         out.resting[a] = Some(!counted);
-        out.changed[a] = true;
-        out.changed[a + 1] = true;
+        for i in balls {
+            out.changed[i] = true;
+            out.kicked[i] |= counted;
+        }
     };
-    hit(first, theta, omega, &mut out);
+    // A root at round-off level can belong to a pair that is not approaching: no
+    // impulse then (one would pull the balls together), only resting contact.
+    let vn = closing_speed(
+        p,
+        (theta[first], omega[first]),
+        (theta[first + 1], omega[first + 1]),
+    );
+    if vn < -r.round_off() {
+        hit(first, theta, omega, &mut out);
+    } else {
+        out.resting[first] = Some(true);
+    }
     // Each pass removes one approaching pair; a chain of n balls with k strikers
     // needs about k (n - k) passes, far below this bound, which only guards the
     // geometric tail of restitution < 1.
@@ -154,8 +208,7 @@ pub fn resolve(
                 continue;
             }
             let vn = closing_speed(p, (theta[a], omega[a]), (theta[a + 1], omega[a + 1]));
-            // Ignore approach at round-off level: 1e-12 of the rest speed.
-            if vn < -1e-12 * r.rest_speed && worst.is_none_or(|(_, w)| vn < w) {
+            if vn < -r.round_off() && worst.is_none_or(|(_, w)| vn < w) {
                 worst = Some((a, vn));
             }
         }

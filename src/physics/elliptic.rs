@@ -44,6 +44,12 @@ pub fn ellip_k(m: f64) -> f64 {
 /// Jacobi elliptic functions `(sn, cn, dn)` of `u` with parameter `m = k^2 in [0, 1]`.
 #[must_use]
 pub fn sncndn(u: f64, m: f64) -> (f64, f64, f64) {
+    sncndn_k(u, m, ellip_k(m))
+}
+
+/// [`sncndn`] with `K(m)` already known (a flight keeps its own), saving an AGM.
+#[must_use]
+pub fn sncndn_k(u: f64, m: f64, quarter: f64) -> (f64, f64, f64) {
     if m <= 0.0 {
         return (u.sin(), u.cos(), 1.0);
     }
@@ -52,7 +58,6 @@ pub fn sncndn(u: f64, m: f64) -> (f64, f64, f64) {
         return (u.tanh(), c, c);
     }
     // Reduce u to [-2K, 2K] so that 2^N a_N u stays small and sin() keeps its digits.
-    let quarter = ellip_k(m);
     let period = 4.0 * quarter;
     let u = u - period * (u / period).round();
 

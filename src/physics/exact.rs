@@ -51,6 +51,9 @@ pub struct ExactEngine {
     contact_step: f64,
     collisions: u64,
     events: u64,
+    /// The state at t = 0, returned as given (the closed form reproduces it to
+    /// round-off only).
+    start: (Vec<f64>, Vec<f64>),
 }
 
 impl ExactEngine {
@@ -75,6 +78,7 @@ impl ExactEngine {
             contact_step: CONTACT_STEP * std::f64::consts::TAU / w0,
             collisions: 0,
             events: 0,
+            start: (theta.to_vec(), omega.to_vec()),
         };
         // Balls that start touching and approaching (none in a lifted start) are
         // resolved before anything flies.
@@ -140,6 +144,15 @@ impl ExactEngine {
         contact::gap_rate(&self.params, sa, sb)
     }
 
+    /// Gap function and its rate from one evaluation of the two flights.
+    fn gap_and_rate(&self, a: usize, t: f64) -> (f64, f64) {
+        let (sa, sb) = self.pair_state(a, t);
+        (
+            contact::gap_fn(&self.params, sa.0, sb.0),
+            contact::gap_rate(&self.params, sa, sb),
+        )
+    }
+
     /// True when pair `a` overlaps (or touches) and approaches at `t`.
     fn pressing(&self, a: usize, t: f64) -> bool {
         let (sa, sb) = self.pair_state(a, t);
@@ -184,7 +197,7 @@ impl ExactEngine {
     /// The earliest impact of pair `a` inside `[t0, t1]` given it is apart at `t0`.
     fn free_impact_in(&self, a: usize, t0: f64, t1: f64) -> Option<f64> {
         let tol = TIME_TOL.max(4.0 * f64::EPSILON * t1.abs());
-        let (h0, h1) = (self.gap_at(a, t0), self.gap_at(a, t1));
+        let ((h0, d0), (h1, d1)) = (self.gap_and_rate(a, t0), self.gap_and_rate(a, t1));
         if h0 <= 0.0 {
             return None;
         }
@@ -192,7 +205,6 @@ impl ExactEngine {
             return Some(falling_root(|t| self.gap_at(a, t), t0, t1, tol));
         }
         // Both ends apart: a grazing dip below zero shows as a minimum inside.
-        let (d0, d1) = (self.gap_rate_at(a, t0), self.gap_rate_at(a, t1));
         if d0 < 0.0 && d1 > 0.0 {
             let tmin = rising_root(|t| self.gap_rate_at(a, t), t0, t1, tol);
             if self.gap_at(a, tmin) <= 0.0 {
@@ -236,9 +248,9 @@ impl ExactEngine {
             *since = match out.resting[a] {
                 Some(true) => Some(te),
                 // A real impact, or a ball of the pair kicked by another pair's
-                // impulse: no longer a slow contact, so no step to wait for.
+                // impact: no longer a slow contact, so no step to wait for.
                 Some(false) => None,
-                None if out.changed[a] || out.changed[a + 1] => None,
+                None if out.kicked[a] || out.kicked[a + 1] => None,
                 None => *since,
             };
         }
@@ -248,6 +260,9 @@ impl ExactEngine {
     /// State at `t` (>= every earlier call's `t`): angles (rad) and angular velocities
     /// (rad/s).
     pub fn state_at(&mut self, t: f64) -> (Vec<f64>, Vec<f64>) {
+        if t == 0.0 && self.events == 0 && self.collisions == 0 {
+            return self.start.clone();
+        }
         self.advance_to(t);
         self.state_now(t)
     }

@@ -9,7 +9,7 @@
 //!   `omega = 2 sigma k w0 dn(v)`, `v = v0 + sigma k w0 (t - t0)`.
 //! - `k = 0`: at rest at the bottom.
 
-use super::elliptic::{ellip_f, ellip_k, phase_of, sncndn};
+use super::elliptic::{ellip_f, ellip_k, phase_of, sncndn_k};
 use std::f64::consts::{PI, TAU};
 
 /// Parameters closer to 1 than this are moved off the separatrix (`K` is infinite
@@ -21,18 +21,24 @@ const SEPARATRIX_GUARD: f64 = 1e-15;
 enum Motion {
     /// Hanging still at `centre` (a multiple of 2 pi).
     Rest,
-    /// Swinging about `centre` with modulus `k`, parameter `m = k^2`, phase `u0` at `t0`.
-    Libration { k: f64, m: f64, u0: f64 },
-    /// Going over the top: parameter `m = 1/k^2`, phase `v0` at `t0`, direction `sigma`.
-    Rotation { k: f64, m: f64, v0: f64, sigma: f64 },
+    /// Swinging about `centre` with modulus `k`, parameter `m = k^2`, phase `u0` at
+    /// `t0`, quarter period `kk = K(m)` in phase.
+    Libration { k: f64, m: f64, u0: f64, kk: f64 },
+    /// Going over the top: parameter `m = 1/k^2`, phase `v0` at `t0`, direction
+    /// `sigma`, `kk = K(m)`.
+    Rotation {
+        k: f64,
+        m: f64,
+        v0: f64,
+        sigma: f64,
+        kk: f64,
+    },
 }
 
 /// One pendulum's exact motion from `(theta0, omega0)` at time `t0`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Flight {
     t0: f64,
-    /// The state at `t0`, returned as given rather than through the closed form.
-    start: (f64, f64),
     w0: f64,
     centre: f64,
     motion: Motion,
@@ -56,6 +62,7 @@ impl Flight {
                 k,
                 m: k2,
                 u0: phase_of(s / k, c / k, k2),
+                kk: ellip_k(k2),
             }
         } else {
             let k = k2.sqrt().max(1.0 + SEPARATRIX_GUARD);
@@ -65,11 +72,11 @@ impl Flight {
                 m,
                 v0: ellip_f(0.5 * rel, m),
                 sigma: if omega < 0.0 { -1.0 } else { 1.0 },
+                kk: ellip_k(m),
             }
         };
         Self {
             t0,
-            start: (theta, omega),
             w0,
             centre,
             motion,
@@ -80,22 +87,25 @@ impl Flight {
     #[must_use]
     pub fn state_at(&self, t: f64) -> (f64, f64) {
         let dt = t - self.t0;
-        if dt == 0.0 {
-            return self.start;
-        }
         match self.motion {
             Motion::Rest => (self.centre, 0.0),
-            Motion::Libration { k, m, u0 } => {
-                let (sn, cn, _) = sncndn(u0 + self.w0 * dt, m);
+            Motion::Libration { k, m, u0, kk } => {
+                let (sn, cn, _) = sncndn_k(u0 + self.w0 * dt, m, kk);
                 // k sn can exceed 1 by an ulp at the turning points; asin would give NaN.
                 let theta = 2.0 * (k * sn).clamp(-1.0, 1.0).asin();
                 (self.centre + theta, 2.0 * k * self.w0 * cn)
             }
-            Motion::Rotation { k, m, v0, sigma } => {
+            Motion::Rotation {
+                k,
+                m,
+                v0,
+                sigma,
+                kk,
+            } => {
                 let v = v0 + sigma * k * self.w0 * dt;
-                let half_period = 2.0 * ellip_k(m);
+                let half_period = 2.0 * kk;
                 let turns = (v / half_period).round();
-                let (sn, cn, dn) = sncndn(v - turns * half_period, m);
+                let (sn, cn, dn) = sncndn_k(v - turns * half_period, m, kk);
                 let am = sn.atan2(cn) + turns * PI;
                 (self.centre + 2.0 * am, 2.0 * sigma * k * self.w0 * dn)
             }
@@ -114,8 +124,8 @@ impl Flight {
     pub fn period(&self) -> f64 {
         match self.motion {
             Motion::Rest => TAU / self.w0,
-            Motion::Libration { m, .. } => 4.0 * ellip_k(m) / self.w0,
-            Motion::Rotation { k, m, .. } => 2.0 * ellip_k(m) / (k * self.w0),
+            Motion::Libration { kk, .. } => 4.0 * kk / self.w0,
+            Motion::Rotation { k, kk, .. } => 2.0 * kk / (k * self.w0),
         }
     }
 
