@@ -8,13 +8,18 @@
 //! - [`config`]: the asset, its defaults, validation with located errors.
 //! - [`physics`]: exact closed-form pendulum flight and impacts (no ECS types).
 //! - [`scene`]: the ECS world: components, spawning, the frame schedule.
-//! - [`trace`]: the flat plain-data scene the extract stage fills.
+//! - [`trace`]: the CPU ray tracer over the flat scene the extract stage fills.
+//! - [`export`], [`headless`]: PNG and GIF output, the `render` subcommand.
+//! - [`bench`]: `bench render`, milliseconds per frame over thread counts.
 //! - [`simulate`]: the `simulate` subcommand's JSON Lines.
 
 #![forbid(unsafe_code)]
 
+pub mod bench;
 pub mod cli;
 pub mod config;
+pub mod export;
+pub mod headless;
 pub mod physics;
 pub mod preview;
 pub mod scene;

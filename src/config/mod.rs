@@ -212,20 +212,20 @@ impl Default for RenderConfig {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct CameraConfig {
-    /// Eye position (m). Default in front and slightly above: (0, 0.3, 0.75).
+    /// Eye position (m). Default in front and above: (0, 0.36, 0.6).
     pub position: Vec3,
-    /// Point looked at (m), not equal to `position`. Default (0, 0.14, 0).
+    /// Point looked at (m), not equal to `position`. Default (0, 0.12, 0).
     pub look_at: Vec3,
-    /// Vertical field of view (degrees), 1..=170. Default 32.
+    /// Vertical field of view (degrees), 1..=170. Default 31.
     pub fov_deg: f64,
 }
 
 impl Default for CameraConfig {
     fn default() -> Self {
         Self {
-            position: [0.0, 0.3, 0.75],
-            look_at: [0.0, 0.14, 0.0],
-            fov_deg: 32.0,
+            position: [0.0, 0.36, 0.6],
+            look_at: [0.0, 0.12, 0.0],
+            fov_deg: 31.0,
         }
     }
 }

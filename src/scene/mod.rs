@@ -77,6 +77,15 @@ impl CradleWorld {
         self.schedule.run(&mut self.world);
     }
 
+    /// Runs one frame showing the cradle at simulated time `t` (s), running or not:
+    /// headless rendering picks its times directly instead of summing frame times.
+    pub fn show_at(&mut self, t: f64) {
+        let mut clock = self.world.resource_mut::<SimClock>();
+        clock.t = t;
+        clock.frame_dt = 0.0;
+        self.schedule.run(&mut self.world);
+    }
+
     /// Replaces the scene by one spawned from `config`.
     pub fn respawn(&mut self, config: &Config) {
         spawn::respawn(&mut self.world, config);

@@ -1,6 +1,16 @@
-//! The tracer's side of the pipeline. The extract stage turns the ECS world into a
-//! flat, plain-data [`Scene`] each frame; the tracer reads only that.
+//! The CPU ray tracer: plain data in, pixels out; no ECS or window types.
+//!
+//! The extract stage turns the ECS world into a flat [`Scene`] each frame.
+//! [`Prepared`] adds bounds, [`shade::trace`] shades a ray (Whitted), and
+//! [`render`] / [`render_serial`] fill an sRGB RGBA8 [`Image`].
 
+pub mod camera;
+pub mod geometry;
+pub mod prepared;
+pub mod render;
 pub mod scene;
+pub mod shade;
 
+pub use prepared::Prepared;
+pub use render::{Image, pool, render, render_serial};
 pub use scene::{Camera, Light, Material, Object, Scene, Shape};

@@ -1,0 +1,85 @@
+//! `newtons-cradle bench render`: milliseconds per frame of a swinging cradle for
+//! each thread count from 1 to every core, the course project's experiment done
+//! with medians.
+
+use crate::config::Config;
+use crate::scene::{Control, CradleWorld};
+use crate::trace;
+use serde_json::json;
+use std::time::Instant;
+
+/// One row of the table.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Row {
+    /// Worker threads.
+    pub threads: usize,
+    /// `full`: every pixel traced each frame.
+    pub mode: &'static str,
+    /// Picture size.
+    pub width: u32,
+    /// Picture size.
+    pub height: u32,
+    /// Median milliseconds per frame.
+    pub ms_median: f64,
+    /// Frames timed.
+    pub frames: u32,
+}
+
+impl Row {
+    /// The row as the JSON Lines contract of DESIGN.md.
+    #[must_use]
+    pub fn json(&self) -> String {
+        json!({"threads": self.threads, "mode": self.mode, "width": self.width, "height": self.height,
+               "ms_median": self.ms_median, "frames": self.frames})
+        .to_string()
+    }
+}
+
+/// Median of a non-empty list.
+#[must_use]
+pub fn median(mut xs: Vec<f64>) -> f64 {
+    xs.sort_by(f64::total_cmp);
+    let n = xs.len();
+    if n % 2 == 1 { xs[n / 2] } else { 0.5 * (xs[n / 2 - 1] + xs[n / 2]) }
+}
+
+/// Times `frames` frames of the swinging cradle (60 fps of simulated time, after two
+/// warm-up frames) with each thread count in `threads`; calls `each` per row.
+///
+/// # Errors
+/// When a thread pool cannot be built.
+pub fn bench_render(
+    config: &Config,
+    threads: &[usize],
+    frames: u32,
+    mut each: impl FnMut(&Row),
+) -> anyhow::Result<Vec<Row>> {
+    let mut rows = Vec::new();
+    for &n in threads {
+        let pool = trace::pool(n)?;
+        let mut world = CradleWorld::new(config);
+        world.send(Control::TogglePause);
+        let mut times = Vec::new();
+        for f in 0..frames + 2 {
+            world.show_at(0.5 + f64::from(f) / 60.0);
+            let start = Instant::now();
+            let img = pool.install(|| trace::render(world.scene()));
+            let ms = start.elapsed().as_secs_f64() * 1e3;
+            std::hint::black_box(img);
+            if f >= 2 {
+                times.push(ms);
+            }
+        }
+        let row = Row {
+            threads: n,
+            mode: "full",
+            width: config.render.width,
+            height: config.render.height,
+            ms_median: median(times),
+            frames,
+        };
+        each(&row);
+        rows.push(row);
+    }
+    Ok(rows)
+}

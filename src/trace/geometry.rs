@@ -1,0 +1,125 @@
+//! Rays and their intersections with the three shapes: sphere, finite capped
+//! cylinder of any axis, plane. Nearest hit beyond `T_MIN` only.
+
+use glam::Vec3;
+
+/// Hits closer than this (m) are ignored: secondary rays start on a surface.
+pub const T_MIN: f32 = 1e-5;
+
+/// A ray with a unit direction.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Ray {
+    /// Start point.
+    pub origin: Vec3,
+    /// Unit direction.
+    pub dir: Vec3,
+}
+
+impl Ray {
+    /// The point at distance `t`.
+    #[must_use]
+    pub fn at(&self, t: f32) -> Vec3 {
+        self.origin + self.dir * t
+    }
+}
+
+/// Nearest `t > T_MIN` where the ray meets the sphere (from outside or inside).
+#[must_use]
+pub fn hit_sphere(ray: &Ray, centre: Vec3, radius: f32) -> Option<f32> {
+    let oc = ray.origin - centre;
+    let b = oc.dot(ray.dir);
+    let c = oc.length_squared() - radius * radius;
+    let disc = b * b - c;
+    if disc < 0.0 {
+        return None;
+    }
+    let s = disc.sqrt();
+    [-b - s, -b + s].into_iter().find(|&t| t > T_MIN)
+}
+
+/// Nearest `t > T_MIN` and the outward normal where the ray meets the cylinder
+/// from `a` to `b` with flat caps.
+#[must_use]
+pub fn hit_cylinder(ray: &Ray, a: Vec3, b: Vec3, radius: f32) -> Option<(f32, Vec3)> {
+    let axis = b - a;
+    let len = axis.length();
+    let u = axis / len;
+    let ao = ray.origin - a;
+    let (du, ou) = (ray.dir.dot(u), ao.dot(u));
+    let d_perp = ray.dir - u * du;
+    let o_perp = ao - u * ou;
+    let qa = d_perp.length_squared();
+    let qb = o_perp.dot(d_perp);
+    let qc = o_perp.length_squared() - radius * radius;
+    let mut best: Option<(f32, Vec3)> = None;
+    let mut take = |t: f32, n: Vec3| {
+        if t > T_MIN && best.is_none_or(|(bt, _)| t < bt) {
+            best = Some((t, n));
+        }
+    };
+    // Body: |o_perp + t d_perp| = r, within the axial extent. A ray parallel to the
+    // axis (qa ~ 0) can only meet the caps.
+    if qa > 1e-12 {
+        let disc = qb * qb - qa * qc;
+        if disc >= 0.0 {
+            let s = disc.sqrt();
+            for t in [(-qb - s) / qa, (-qb + s) / qa] {
+                let along = ou + t * du;
+                if (0.0..=len).contains(&along) {
+                    take(t, (o_perp + d_perp * t) / radius);
+                }
+            }
+        }
+    }
+    // Caps: the planes through a (facing -u) and b (facing +u), within the radius.
+    if du.abs() > 1e-12 {
+        for (end, normal, along) in [(a, -u, 0.0), (b, u, len)] {
+            let t = (along - ou) / du;
+            if (ray.at(t) - end).length_squared() <= radius * radius {
+                take(t, normal);
+            }
+        }
+    }
+    best
+}
+
+/// `t > T_MIN` where the ray meets the plane through `point` with unit `normal`.
+#[must_use]
+pub fn hit_plane(ray: &Ray, point: Vec3, normal: Vec3) -> Option<f32> {
+    let denom = ray.dir.dot(normal);
+    if denom.abs() < 1e-9 {
+        return None;
+    }
+    let t = (point - ray.origin).dot(normal) / denom;
+    (t > T_MIN).then_some(t)
+}
+
+/// An axis-aligned box.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Aabb {
+    /// Smallest corner.
+    pub min: Vec3,
+    /// Largest corner.
+    pub max: Vec3,
+}
+
+impl Aabb {
+    /// The empty box (grows from nothing).
+    pub const EMPTY: Self = Self { min: Vec3::splat(f32::INFINITY), max: Vec3::splat(f32::NEG_INFINITY) };
+
+    /// The smallest box holding both.
+    #[must_use]
+    pub fn union(self, o: Self) -> Self {
+        Self { min: self.min.min(o.min), max: self.max.max(o.max) }
+    }
+
+    /// Whether the ray meets the box between `T_MIN` and `t_max` (slab test).
+    #[must_use]
+    pub fn hit(&self, ray: &Ray, inv_dir: Vec3, t_max: f32) -> bool {
+        let t1 = (self.min - ray.origin) * inv_dir;
+        let t2 = (self.max - ray.origin) * inv_dir;
+        let near = t1.min(t2).max_element().max(T_MIN);
+        let far = t1.max(t2).min_element().min(t_max);
+        near <= far
+    }
+}

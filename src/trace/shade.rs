@@ -1,0 +1,95 @@
+//! Whitted shading: ambient + Lambert diffuse + Phong specular per light, one
+//! shadow ray per light (any hit ends it), mirror reflections to `max_depth`
+//! blended by the material's `reflective` weight.
+//!
+//! The reflection bailout is part of the model and applied identically everywhere:
+//! a reflection is not traced when its weight (the product of `reflective` along the
+//! path) times the brightest radiance the scene can produce times 12.92 (the
+//! steepest slope of the sRGB curve) is below half an 8-bit step, 0.5/255. Its
+//! contribution is then 0.
+
+use super::geometry::Ray;
+use super::prepared::Prepared;
+use super::scene::{Light, Material};
+use glam::Vec3;
+
+/// Secondary rays start this far (m) off the surface, along its normal.
+const SURFACE_OFFSET: f32 = 2e-5;
+
+/// Half an 8-bit step, divided by the steepest slope of the sRGB encoding.
+const BAILOUT: f32 = 0.5 / 255.0 / 12.92;
+
+/// The scene's brightest possible radiance per channel: every light at full
+/// diffuse and full specular, or the background.
+#[must_use]
+pub fn radiance_bound(p: &Prepared<'_>) -> f32 {
+    let lights: Vec3 = p
+        .scene
+        .lights
+        .iter()
+        .map(|l| match *l {
+            Light::Ambient { color } => color,
+            Light::Point { color, .. } | Light::Directional { color, .. } => 2.0 * color,
+        })
+        .sum();
+    lights.max(p.scene.background).max_element()
+}
+
+/// The surface colour at `point`: plain, or a checker on the x-z grid.
+fn base_color(m: &Material, point: Vec3) -> Vec3 {
+    match m.checker {
+        Some((other, size)) => {
+            let cell = (point.x / size).floor() as i64 + (point.z / size).floor() as i64;
+            if cell.rem_euclid(2) == 0 { m.color } else { other }
+        }
+        None => m.color,
+    }
+}
+
+/// Radiance (linear RGB) along `ray`; `depth` bounces so far, `weight` the product
+/// of reflective factors so far, `bound` from [`radiance_bound`].
+#[must_use]
+pub fn trace(p: &Prepared<'_>, ray: &Ray, depth: u32, weight: f32, bound: f32) -> Vec3 {
+    let Some(hit) = p.closest(ray, f32::INFINITY) else {
+        return p.scene.background;
+    };
+    let m = &p.scene.objects[hit.object].material;
+    let point = ray.at(hit.t);
+    let n = hit.normal;
+    let start = point + n * SURFACE_OFFSET;
+    let base = base_color(m, point);
+    let mut color = Vec3::ZERO;
+    for light in &p.scene.lights {
+        let (to_light, dist, light_color) = match *light {
+            Light::Ambient { color: c } => {
+                color += base * c;
+                continue;
+            }
+            Light::Point { position, color: c } => {
+                let d = position - point;
+                let len = d.length();
+                (d / len, len, c)
+            }
+            Light::Directional { direction, color: c } => (-direction, f32::INFINITY, c),
+        };
+        let lambert = n.dot(to_light);
+        if lambert <= 0.0 || p.occluded(&Ray { origin: start, dir: to_light }, dist) {
+            continue;
+        }
+        color += base * light_color * lambert;
+        if let Some(exponent) = m.specular {
+            let mirrored = 2.0 * lambert * n - to_light;
+            let facing = mirrored.dot(-ray.dir);
+            if facing > 0.0 {
+                color += light_color * facing.powf(exponent);
+            }
+        }
+    }
+    let r = m.reflective;
+    if r > 0.0 && depth < p.scene.max_depth && weight * r * bound >= BAILOUT {
+        let dir = ray.dir - 2.0 * ray.dir.dot(n) * n;
+        let reflected = trace(p, &Ray { origin: start, dir }, depth + 1, weight * r, bound);
+        color = color * (1.0 - r) + reflected * r;
+    }
+    color
+}
