@@ -10,7 +10,9 @@ fn frame(c: &mut Criterion) {
     let mut world = CradleWorld::new(&config);
     world.show_at(0.5);
     let scene = world.scene().clone();
-    c.bench_function("render 1200x600 default scene", |b| b.iter(|| trace::render(std::hint::black_box(&scene))));
+    c.bench_function("render 1200x600 default scene", |b| {
+        b.iter(|| trace::render(std::hint::black_box(&scene)))
+    });
 }
 
 criterion_group! {

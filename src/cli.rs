@@ -39,13 +39,23 @@ pub struct RenderArgs {
     #[arg(long, value_name = "PATH")]
     pub out: Option<PathBuf>,
     /// Simulated time of the (first) frame (s), 0..=1e6.
-    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true, value_name = "S")]
+    #[arg(
+        long,
+        default_value_t = 0.0,
+        allow_negative_numbers = true,
+        value_name = "S"
+    )]
     pub time: f64,
     /// Number of frames of a sequence or GIF, 1..=100000 (GIF default 60).
     #[arg(long, allow_negative_numbers = true, value_name = "N")]
     pub frames: Option<i64>,
     /// Frames per second of simulated time, > 0 and <= 1000.
-    #[arg(long, default_value_t = 30.0, allow_negative_numbers = true, value_name = "F")]
+    #[arg(
+        long,
+        default_value_t = 30.0,
+        allow_negative_numbers = true,
+        value_name = "F"
+    )]
     pub fps: f64,
     /// Write an animated GIF here instead.
     #[arg(long, value_name = "FILE.gif")]
@@ -66,7 +76,12 @@ pub struct BenchRenderArgs {
     #[arg(long)]
     pub json: bool,
     /// Frames timed per thread count (the median is reported), 1..=10000.
-    #[arg(long, default_value_t = 15, allow_negative_numbers = true, value_name = "N")]
+    #[arg(
+        long,
+        default_value_t = 15,
+        allow_negative_numbers = true,
+        value_name = "N"
+    )]
     pub frames: i64,
 }
 
@@ -311,20 +326,40 @@ pub fn check_simulate(a: &SimulateArgs) -> Result<(), InputError> {
 pub fn render_output(a: &RenderArgs) -> Result<crate::headless::Output, InputError> {
     use crate::headless::Output;
     if !(a.time.is_finite() && (0.0..=1e6).contains(&a.time)) {
-        return Err(InputError::Flag(format!("--time {}: not allowed; allowed: 0..=1e6 (s)", a.time)));
+        return Err(InputError::Flag(format!(
+            "--time {}: not allowed; allowed: 0..=1e6 (s)",
+            a.time
+        )));
     }
     if !(a.fps.is_finite() && a.fps > 0.0 && a.fps <= 1000.0) {
-        return Err(InputError::Flag(format!("--fps {}: not allowed; allowed: > 0 and <= 1000", a.fps)));
+        return Err(InputError::Flag(format!(
+            "--fps {}: not allowed; allowed: > 0 and <= 1000",
+            a.fps
+        )));
     }
     let frames = match a.frames {
         None => None,
         Some(n) if (1..=100_000).contains(&n) => Some(n as u32),
-        Some(n) => return Err(InputError::Flag(format!("--frames {n}: not allowed; allowed: 1..=100000"))),
+        Some(n) => {
+            return Err(InputError::Flag(format!(
+                "--frames {n}: not allowed; allowed: 1..=100000"
+            )));
+        }
     };
     match (&a.out, &a.gif, frames) {
-        (Some(_), Some(_), _) => Err(InputError::Flag("give either --out or --gif, not both".into())),
-        (None, Some(gif), frames) => Ok(Output::Gif { path: gif.clone(), frames: frames.unwrap_or(60), fps: a.fps }),
-        (Some(dir), None, Some(frames)) => Ok(Output::Sequence { dir: dir.clone(), frames, fps: a.fps }),
+        (Some(_), Some(_), _) => Err(InputError::Flag(
+            "give either --out or --gif, not both".into(),
+        )),
+        (None, Some(gif), frames) => Ok(Output::Gif {
+            path: gif.clone(),
+            frames: frames.unwrap_or(60),
+            fps: a.fps,
+        }),
+        (Some(dir), None, Some(frames)) => Ok(Output::Sequence {
+            dir: dir.clone(),
+            frames,
+            fps: a.fps,
+        }),
         (Some(png), None, None) => Ok(Output::Png(png.clone())),
         (None, None, _) => Err(InputError::Flag(
             "say where to write: --out FILE.png, --frames N --out DIR/, or --gif FILE.gif".into(),
@@ -340,6 +375,9 @@ pub fn bench_frames(a: &BenchRenderArgs) -> Result<u32, InputError> {
     if (1..=10_000).contains(&a.frames) {
         Ok(a.frames as u32)
     } else {
-        Err(InputError::Flag(format!("--frames {}: not allowed; allowed: 1..=10000", a.frames)))
+        Err(InputError::Flag(format!(
+            "--frames {}: not allowed; allowed: 1..=10000",
+            a.frames
+        )))
     }
 }

@@ -16,7 +16,10 @@ pub struct WriteError {
 }
 
 fn fail(path: &Path, reason: impl ToString) -> WriteError {
-    WriteError { path: path.to_path_buf(), reason: reason.to_string() }
+    WriteError {
+        path: path.to_path_buf(),
+        reason: reason.to_string(),
+    }
 }
 
 /// Creates `path` (and the folders above it) for writing.
@@ -27,7 +30,9 @@ pub fn create(path: &Path) -> Result<BufWriter<File>, WriteError> {
     if let Some(parent) = path.parent().filter(|p| !p.as_os_str().is_empty()) {
         std::fs::create_dir_all(parent).map_err(|e| fail(path, e))?;
     }
-    File::create(path).map(BufWriter::new).map_err(|e| fail(path, e))
+    File::create(path)
+        .map(BufWriter::new)
+        .map_err(|e| fail(path, e))
 }
 
 /// Writes an RGBA8 sRGB image as PNG.
@@ -40,7 +45,9 @@ pub fn write_png(path: &Path, img: &Image) -> Result<(), WriteError> {
     enc.set_depth(png::BitDepth::Eight);
     enc.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
     let mut writer = enc.write_header().map_err(|e| fail(path, e))?;
-    writer.write_image_data(&img.rgba).map_err(|e| fail(path, e))?;
+    writer
+        .write_image_data(&img.rgba)
+        .map_err(|e| fail(path, e))?;
     writer.finish().map_err(|e| fail(path, e))
 }
 
@@ -57,12 +64,21 @@ impl GifWriter {
     /// # Errors
     /// When the file cannot be created, or the size exceeds 65535.
     pub fn create(path: &Path, width: u32, height: u32, fps: f64) -> Result<Self, WriteError> {
-        let (w, h) = (u16::try_from(width).map_err(|e| fail(path, e))?, u16::try_from(height).map_err(|e| fail(path, e))?);
+        let (w, h) = (
+            u16::try_from(width).map_err(|e| fail(path, e))?,
+            u16::try_from(height).map_err(|e| fail(path, e))?,
+        );
         let mut encoder = gif::Encoder::new(create(path)?, w, h, &[]).map_err(|e| fail(path, e))?;
-        encoder.set_repeat(gif::Repeat::Infinite).map_err(|e| fail(path, e))?;
+        encoder
+            .set_repeat(gif::Repeat::Infinite)
+            .map_err(|e| fail(path, e))?;
         // GIF delays are in centiseconds.
         let delay_cs = (100.0 / fps).round().clamp(1.0, 65535.0) as u16;
-        Ok(Self { path: path.to_path_buf(), encoder, delay_cs })
+        Ok(Self {
+            path: path.to_path_buf(),
+            encoder,
+            delay_cs,
+        })
     }
 
     /// Appends a frame (quantised to 256 colours with NeuQuant).
@@ -74,6 +90,8 @@ impl GifWriter {
         let (w, h) = (img.width as u16, img.height as u16);
         let mut frame = gif::Frame::from_rgba_speed(w, h, &mut rgba, 10);
         frame.delay = self.delay_cs;
-        self.encoder.write_frame(&frame).map_err(|e| fail(&self.path, e))
+        self.encoder
+            .write_frame(&frame)
+            .map_err(|e| fail(&self.path, e))
     }
 }

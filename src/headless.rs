@@ -16,7 +16,11 @@ pub enum Output {
     /// `frames` PNGs `frame_0000.png`.. in a folder.
     Sequence { dir: PathBuf, frames: u32, fps: f64 },
     /// An animated GIF of `frames` frames.
-    Gif { path: PathBuf, frames: u32, fps: f64 },
+    Gif {
+        path: PathBuf,
+        frames: u32,
+        fps: f64,
+    },
 }
 
 /// Renders the cradle of `config` starting at simulated time `start` (s) on a
@@ -76,14 +80,22 @@ struct Progress {
 
 impl Progress {
     fn new(total: u32) -> Self {
-        Self { total, live: std::io::stdout().is_terminal() && std::io::stderr().is_terminal() }
+        Self {
+            total,
+            live: std::io::stdout().is_terminal() && std::io::stderr().is_terminal(),
+        }
     }
 
     fn tick(&self, done: u32) {
         if self.live {
             let width = 30;
             let filled = (done as usize * width) / self.total.max(1) as usize;
-            eprint!("\r[{}{}] {done}/{} frames", "#".repeat(filled), " ".repeat(width - filled), self.total);
+            eprint!(
+                "\r[{}{}] {done}/{} frames",
+                "#".repeat(filled),
+                " ".repeat(width - filled),
+                self.total
+            );
             std::io::stderr().flush().ok();
         }
     }
@@ -100,7 +112,12 @@ impl Progress {
 pub fn describe(output: &Output) -> String {
     match output {
         Output::Png(p) => format!("{}", p.display()),
-        Output::Sequence { dir, frames, fps } => format!("{frames} frames at {fps} fps in {}", Path::new(dir).display()),
-        Output::Gif { path, frames, fps } => format!("{frames} frames at {fps} fps in {}", path.display()),
+        Output::Sequence { dir, frames, fps } => format!(
+            "{frames} frames at {fps} fps in {}",
+            Path::new(dir).display()
+        ),
+        Output::Gif { path, frames, fps } => {
+            format!("{frames} frames at {fps} fps in {}", path.display())
+        }
     }
 }

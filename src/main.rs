@@ -103,18 +103,35 @@ fn run(cli: &Cli) -> Result<(), Failure> {
         }
         Some(Command::Render(args)) => {
             let output = render_output.expect("checked above for render");
-            tracing::info!("rendering {} at {}x{}", headless::describe(&output), config.render.width, config.render.height);
+            tracing::info!(
+                "rendering {} at {}x{}",
+                headless::describe(&output),
+                config.render.width,
+                config.render.height
+            );
             let start = std::time::Instant::now();
             let files = headless::render(&config, args.time, &output)?;
-            tracing::info!("wrote {} file(s) in {:.2} s", files.len(), start.elapsed().as_secs_f64());
+            tracing::info!(
+                "wrote {} file(s) in {:.2} s",
+                files.len(),
+                start.elapsed().as_secs_f64()
+            );
         }
         Some(Command::Bench(BenchCommand::Render(args))) => {
             let frames = cli::bench_frames(args)?;
             let cores = std::thread::available_parallelism().map_or(1, std::num::NonZero::get);
-            let threads: Vec<usize> = if config.render.threads > 0 { vec![config.render.threads] } else { (1..=cores).collect() };
+            let threads: Vec<usize> = if config.render.threads > 0 {
+                vec![config.render.threads]
+            } else {
+                (1..=cores).collect()
+            };
             let mut out = io::stdout().lock();
             if !args.json {
-                writeln!(out, "{}x{}, {} balls, median of {frames} frames of a swinging cradle", config.render.width, config.render.height, config.cradle.balls)?;
+                writeln!(
+                    out,
+                    "{}x{}, {} balls, median of {frames} frames of a swinging cradle",
+                    config.render.width, config.render.height, config.cradle.balls
+                )?;
                 writeln!(out, "threads  mode  ms/frame  speed-up")?;
             }
             let mut base = None;
@@ -123,7 +140,13 @@ fn run(cli: &Cli) -> Result<(), Failure> {
                     row.json()
                 } else {
                     let b = *base.get_or_insert(row.ms_median);
-                    format!("{:>7}  {:<4}  {:>8.2}  {:>7.2}x", row.threads, row.mode, row.ms_median, b / row.ms_median)
+                    format!(
+                        "{:>7}  {:<4}  {:>8.2}  {:>7.2}x",
+                        row.threads,
+                        row.mode,
+                        row.ms_median,
+                        b / row.ms_median
+                    )
                 };
                 let _ = writeln!(out, "{line}");
             })?;

@@ -23,7 +23,11 @@ impl CameraRays {
     pub fn new(cam: &Camera, width: u32, height: u32) -> Self {
         let forward = (cam.look_at - cam.position).normalize();
         // World up is +y; looking straight up or down, use +z instead.
-        let world_up = if forward.cross(Vec3::Y).length_squared() < 1e-8 { Vec3::Z } else { Vec3::Y };
+        let world_up = if forward.cross(Vec3::Y).length_squared() < 1e-8 {
+            Vec3::Z
+        } else {
+            Vec3::Y
+        };
         let right = forward.cross(world_up).normalize();
         let up = right.cross(forward);
         let half_h = (0.5 * cam.fov_deg.to_radians()).tan();
@@ -43,6 +47,9 @@ impl CameraRays {
     pub fn ray(&self, x: f32, y: f32) -> Ray {
         let sx = 2.0 * x / self.width - 1.0;
         let sy = 1.0 - 2.0 * y / self.height;
-        Ray { origin: self.origin, dir: (self.forward + self.right * sx + self.up * sy).normalize() }
+        Ray {
+            origin: self.origin,
+            dir: (self.forward + self.right * sx + self.up * sy).normalize(),
+        }
     }
 }

@@ -105,12 +105,18 @@ pub struct Aabb {
 
 impl Aabb {
     /// The empty box (grows from nothing).
-    pub const EMPTY: Self = Self { min: Vec3::splat(f32::INFINITY), max: Vec3::splat(f32::NEG_INFINITY) };
+    pub const EMPTY: Self = Self {
+        min: Vec3::splat(f32::INFINITY),
+        max: Vec3::splat(f32::NEG_INFINITY),
+    };
 
     /// The smallest box holding both.
     #[must_use]
     pub fn union(self, o: Self) -> Self {
-        Self { min: self.min.min(o.min), max: self.max.max(o.max) }
+        Self {
+            min: self.min.min(o.min),
+            max: self.max.max(o.max),
+        }
     }
 
     /// Whether the ray meets the box between `T_MIN` and `t_max` (slab test).

@@ -20,13 +20,19 @@ pub struct Hit {
 /// Bounds of a shape; `None` for unbounded planes.
 fn bounds(shape: &Shape) -> Option<Aabb> {
     match *shape {
-        Shape::Sphere { centre, radius } => Some(Aabb { min: centre - radius, max: centre + radius }),
+        Shape::Sphere { centre, radius } => Some(Aabb {
+            min: centre - radius,
+            max: centre + radius,
+        }),
         Shape::Cylinder { a, b, radius } => {
             // The caps are discs of this radius; their extent along each world axis
             // is radius * sqrt(1 - u_i^2).
             let u = (b - a).normalize();
             let ext = radius * (Vec3::ONE - u * u).max(Vec3::ZERO).sqrt();
-            Some(Aabb { min: a.min(b) - ext, max: a.max(b) + ext })
+            Some(Aabb {
+                min: a.min(b) - ext,
+                max: a.max(b) + ext,
+            })
         }
         Shape::Plane { .. } => None,
     }
@@ -58,7 +64,12 @@ impl<'a> Prepared<'a> {
                 None => planes.push(i),
             }
         }
-        Self { scene, bounded, group, planes }
+        Self {
+            scene,
+            bounded,
+            group,
+            planes,
+        }
     }
 
     /// Distance and outward normal of the ray's hit on object `i`, if any.
@@ -95,17 +106,27 @@ impl<'a> Prepared<'a> {
                 }
             }
         }
-        best.map(|(t, object, n)| Hit { t, object, normal: if n.dot(ray.dir) > 0.0 { -n } else { n } })
+        best.map(|(t, object, n)| Hit {
+            t,
+            object,
+            normal: if n.dot(ray.dir) > 0.0 { -n } else { n },
+        })
     }
 
     /// Whether anything lies on the ray before `t_max` (shadow rays: any hit ends them).
     #[must_use]
     pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
-        let blocks = |i: usize| Self::hit_object(&self.scene.objects[i], ray).is_some_and(|(t, _)| t < t_max);
+        let blocks = |i: usize| {
+            Self::hit_object(&self.scene.objects[i], ray).is_some_and(|(t, _)| t < t_max)
+        };
         if self.planes.iter().any(|&i| blocks(i)) {
             return true;
         }
         let inv = ray.dir.recip();
-        self.group.hit(ray, inv, t_max) && self.bounded.iter().any(|&(i, ref b)| b.hit(ray, inv, t_max) && blocks(i))
+        self.group.hit(ray, inv, t_max)
+            && self
+                .bounded
+                .iter()
+                .any(|&(i, ref b)| b.hit(ray, inv, t_max) && blocks(i))
     }
 }

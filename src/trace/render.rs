@@ -23,7 +23,11 @@ pub struct Image {
 #[must_use]
 pub fn srgb8(linear: f32) -> u8 {
     let x = linear.clamp(0.0, 1.0);
-    let s = if x <= 0.003_130_8 { 12.92 * x } else { 1.055 * x.powf(1.0 / 2.4) - 0.055 };
+    let s = if x <= 0.003_130_8 {
+        12.92 * x
+    } else {
+        1.055 * x.powf(1.0 / 2.4) - 0.055
+    };
     (s * 255.0 + 0.5) as u8
 }
 
@@ -37,7 +41,14 @@ pub fn sample_offsets(n: u32) -> Vec<(f32, f32)> {
     // Roberts' R2: steps by the inverse powers of the plastic number.
     const A1: f64 = 0.754_877_666_246_692_7;
     const A2: f64 = 0.569_840_290_998_053_3;
-    (0..n).map(|i| (((0.5 + A1 * f64::from(i)) % 1.0) as f32, ((0.5 + A2 * f64::from(i)) % 1.0) as f32)).collect()
+    (0..n)
+        .map(|i| {
+            (
+                ((0.5 + A1 * f64::from(i)) % 1.0) as f32,
+                ((0.5 + A2 * f64::from(i)) % 1.0) as f32,
+            )
+        })
+        .collect()
 }
 
 /// Everything one row needs, shared by the serial and parallel paths.
@@ -85,7 +96,11 @@ impl<'a> Frame<'a> {
 
 fn blank(scene: &Scene) -> Image {
     let (width, height) = scene.size;
-    Image { width, height, rgba: vec![0; width as usize * height as usize * 4] }
+    Image {
+        width,
+        height,
+        rgba: vec![0; width as usize * height as usize * 4],
+    }
 }
 
 /// The reference renderer: one row after another on this thread.
@@ -106,7 +121,10 @@ pub fn render(scene: &Scene) -> Image {
     let frame = Frame::new(scene);
     let mut img = blank(scene);
     let stride = img.width as usize * 4;
-    img.rgba.par_chunks_exact_mut(stride).enumerate().for_each(|(y, row)| frame.row(y as u32, row));
+    img.rgba
+        .par_chunks_exact_mut(stride)
+        .enumerate()
+        .for_each(|(y, row)| frame.row(y as u32, row));
     img
 }
 

@@ -40,7 +40,11 @@ fn base_color(m: &Material, point: Vec3) -> Vec3 {
     match m.checker {
         Some((other, size)) => {
             let cell = (point.x / size).floor() as i64 + (point.z / size).floor() as i64;
-            if cell.rem_euclid(2) == 0 { m.color } else { other }
+            if cell.rem_euclid(2) == 0 {
+                m.color
+            } else {
+                other
+            }
         }
         None => m.color,
     }
@@ -70,10 +74,21 @@ pub fn trace(p: &Prepared<'_>, ray: &Ray, depth: u32, weight: f32, bound: f32) -
                 let len = d.length();
                 (d / len, len, c)
             }
-            Light::Directional { direction, color: c } => (-direction, f32::INFINITY, c),
+            Light::Directional {
+                direction,
+                color: c,
+            } => (-direction, f32::INFINITY, c),
         };
         let lambert = n.dot(to_light);
-        if lambert <= 0.0 || p.occluded(&Ray { origin: start, dir: to_light }, dist) {
+        if lambert <= 0.0
+            || p.occluded(
+                &Ray {
+                    origin: start,
+                    dir: to_light,
+                },
+                dist,
+            )
+        {
             continue;
         }
         color += base * light_color * lambert;
