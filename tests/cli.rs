@@ -234,3 +234,129 @@ fn run_without_a_window_previews_and_points_to_simulate() {
         "text frames: {out}"
     );
 }
+
+/// Width and height from a PNG's header (IHDR follows the 8-byte signature).
+fn png_size(path: &Path) -> (u32, u32) {
+    let bytes = std::fs::read(path).expect("png written");
+    assert_eq!(
+        &bytes[..8],
+        b"\x89PNG\r\n\x1a\n",
+        "{} is a PNG",
+        path.display()
+    );
+    let be = |i: usize| u32::from_be_bytes(bytes[i..i + 4].try_into().expect("4 bytes"));
+    (be(16), be(20))
+}
+
+#[test]
+fn render_writes_a_png_a_sequence_and_a_gif_creating_folders() {
+    let dir = temp_dir("render");
+    let small = ["--width", "64", "--height", "32"];
+    let png = dir.join("deep/er/one.png");
+    let o = run(&[
+        &[
+            "render",
+            "--out",
+            png.to_str().expect("utf-8"),
+            "--time",
+            "0.5",
+        ][..],
+        &small,
+    ]
+    .concat());
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert_eq!(png_size(&png), (64, 32));
+
+    let seq = dir.join("seq");
+    let o = run(&[
+        &[
+            "render",
+            "--frames",
+            "3",
+            "--fps",
+            "10",
+            "--out",
+            seq.to_str().expect("utf-8"),
+        ][..],
+        &small,
+    ]
+    .concat());
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    for n in 0..3 {
+        assert_eq!(png_size(&seq.join(format!("frame_{n:04}.png"))), (64, 32));
+    }
+    assert!(!seq.join("frame_0003.png").exists());
+
+    let gif = dir.join("anim.gif");
+    let o = run(&[
+        &[
+            "render",
+            "--gif",
+            gif.to_str().expect("utf-8"),
+            "--frames",
+            "4",
+        ][..],
+        &small,
+    ]
+    .concat());
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let bytes = std::fs::read(&gif).expect("gif written");
+    assert_eq!(&bytes[..6], b"GIF89a");
+    assert_eq!(u16::from_le_bytes([bytes[6], bytes[7]]), 64);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn render_refuses_unwritable_paths_and_missing_outputs_with_exit_2() {
+    let dir = temp_dir("unwritable");
+    let blocker = dir.join("a-file");
+    std::fs::write(&blocker, b"not a folder").expect("write");
+    let inside = blocker.join("x.png");
+    let o = run(&[
+        "render",
+        "--width",
+        "32",
+        "--height",
+        "16",
+        "--out",
+        inside.to_str().expect("utf-8"),
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("cannot write") && stderr(&o).contains("x.png"),
+        "{}",
+        stderr(&o)
+    );
+    let o = run(&["render"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("--out FILE.png"), "{}", stderr(&o));
+    let o = run(&["render", "--out", "x.png", "--fps", "0"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("--fps 0: not allowed"),
+        "{}",
+        stderr(&o)
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn bench_render_prints_one_json_line_per_thread_count() {
+    let o = run(&[
+        "bench", "render", "--json", "--frames", "2", "--width", "48", "--height", "24",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let v = lines(&o);
+    let cores = std::thread::available_parallelism().map_or(1, std::num::NonZero::get);
+    assert_eq!(v.len(), cores);
+    for (i, row) in v.iter().enumerate() {
+        assert_eq!(row["threads"].as_u64(), Some(i as u64 + 1));
+        assert_eq!(row["mode"], "full");
+        assert_eq!(
+            (row["width"].as_u64(), row["height"].as_u64()),
+            (Some(48), Some(24))
+        );
+        assert_eq!(row["frames"].as_u64(), Some(2));
+        assert!(row["ms_median"].as_f64().is_some_and(|ms| ms > 0.0));
+    }
+}

@@ -66,7 +66,7 @@ pub fn hit_cylinder(ray: &Ray, a: Vec3, b: Vec3, radius: f32) -> Option<(f32, Ve
             for t in [(-qb - s) / qa, (-qb + s) / qa] {
                 let along = ou + t * du;
                 if (0.0..=len).contains(&along) {
-                    take(t, (o_perp + d_perp * t) / radius);
+                    take(t, (o_perp + d_perp * t).normalize());
                 }
             }
         }
