@@ -21,7 +21,7 @@ pub struct Cli {
 /// Subcommands.
 #[derive(Debug, Subcommand)]
 pub enum Command {
-    /// Show the cradle (default). Until the window arrives: a text preview.
+    /// Open the window (the default).
     Run,
     /// Print the cradle's state as JSON Lines: params, samples, summary.
     Simulate(SimulateArgs),
@@ -121,7 +121,7 @@ pub enum IntegratorFlag {
 }
 
 /// The common overrides (DESIGN.md): each replaces one config field.
-#[derive(Debug, Args, Default)]
+#[derive(Debug, Clone, Args, Default)]
 pub struct Common {
     /// Config asset (default: ./assets/cradle.ron if present, else the built-in one).
     #[arg(long, global = true, value_name = "PATH")]

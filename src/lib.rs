@@ -11,17 +11,18 @@
 //! - [`trace`]: the CPU ray tracer over the flat scene the extract stage fills.
 //! - [`export`], [`headless`]: PNG and GIF output, the `render` subcommand.
 //! - [`bench`]: `bench render`, milliseconds per frame over thread counts.
+//! - [`app`]: the window (winit + pixels), keys, HUD and hot reload.
 //! - [`simulate`]: the `simulate` subcommand's JSON Lines.
 
 #![forbid(unsafe_code)]
 
+pub mod app;
 pub mod bench;
 pub mod cli;
 pub mod config;
 pub mod export;
 pub mod headless;
 pub mod physics;
-pub mod preview;
 pub mod scene;
 pub mod simulate;
 pub mod trace;

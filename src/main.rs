@@ -3,7 +3,7 @@
 
 use clap::Parser;
 use newtons_cradle::cli::{self, BenchCommand, Cli, Command, InputError};
-use newtons_cradle::{bench, headless, preview, simulate};
+use newtons_cradle::{bench, headless, simulate};
 use std::io::{self, Write};
 use std::process::ExitCode;
 
@@ -85,17 +85,10 @@ fn run(cli: &Cli) -> Result<(), Failure> {
     tracing::info!("config: {source}");
     match &cli.command {
         None | Some(Command::Run) => {
-            let mut out = io::stdout().lock();
-            writeln!(
-                out,
-                "newtons-cradle: the window is not built yet; here is a text preview of {} balls, {} lifted to {} degrees.",
-                config.cradle.balls, config.start.lift, config.start.angle_deg
-            )?;
-            preview::preview(&config, 3.0, &mut out)?;
-            writeln!(
-                out,
-                "For the numbers: `newtons-cradle simulate --duration 10 --every 0.01` prints the state as JSON Lines."
-            )?;
+            newtons_cradle::app::run(config, source, cli.common.clone()).map_err(|e| {
+                // No display or adapter: say so plainly (exit 1), not as a crash.
+                Failure::Other(e)
+            })?;
         }
         Some(Command::Simulate(args)) => {
             let mut out = io::BufWriter::new(io::stdout().lock());

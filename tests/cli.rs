@@ -224,15 +224,20 @@ fn asset_choice_is_logged_and_the_built_in_one_works_anywhere() {
 }
 
 #[test]
-fn run_without_a_window_previews_and_points_to_simulate() {
-    let o = run(&[]);
-    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
-    let out = String::from_utf8_lossy(&o.stdout);
-    assert!(out.contains("newtons-cradle simulate"), "{out}");
+fn the_window_without_a_display_says_so_and_points_to_render() {
+    let o = Command::new(env!("CARGO_BIN_EXE_newtons-cradle"))
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .env_remove("WAYLAND_SOCKET")
+        .output()
+        .expect("the binary runs");
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let err = stderr(&o);
     assert!(
-        out.lines().filter(|l| l.starts_with('|')).count() >= 10,
-        "text frames: {out}"
+        err.contains("cannot open a window") && err.contains("newtons-cradle render --out"),
+        "{err}"
     );
+    assert!(!err.contains("panicked") && !err.contains(".rs:"), "{err}");
 }
 
 /// Width and height from a PNG's header (IHDR follows the 8-byte signature).

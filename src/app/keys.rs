@@ -1,0 +1,98 @@
+//! The key map: which key does what in the window.
+
+use winit::keyboard::{Key, NamedKey};
+
+/// What a key asks for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Action {
+    /// Space: start or stop the swing.
+    TogglePause,
+    /// R: back to the asset's initial state.
+    Reset,
+    /// Left / Right: one ball fewer / more lifted.
+    Lift(i32),
+    /// Down / Up: one ball fewer / more.
+    Balls(i32),
+    /// H or F1: status HUD -> status and help -> nothing -> status.
+    ToggleHud,
+    /// S: save a screenshot.
+    Screenshot,
+    /// Escape: quit.
+    Quit,
+}
+
+/// The action of a pressed key, if it has one.
+#[must_use]
+pub fn action(key: &Key) -> Option<Action> {
+    match key {
+        Key::Named(NamedKey::Space) => Some(Action::TogglePause),
+        Key::Named(NamedKey::ArrowLeft) => Some(Action::Lift(-1)),
+        Key::Named(NamedKey::ArrowRight) => Some(Action::Lift(1)),
+        Key::Named(NamedKey::ArrowDown) => Some(Action::Balls(-1)),
+        Key::Named(NamedKey::ArrowUp) => Some(Action::Balls(1)),
+        Key::Named(NamedKey::F1) => Some(Action::ToggleHud),
+        Key::Named(NamedKey::Escape) => Some(Action::Quit),
+        Key::Character(c) => match c.to_lowercase().as_str() {
+            "r" => Some(Action::Reset),
+            "h" => Some(Action::ToggleHud),
+            "s" => Some(Action::Screenshot),
+            " " => Some(Action::TogglePause),
+            _ => None,
+        },
+        _ => None,
+    }
+}
+
+/// The help lines the HUD shows.
+pub const HELP: [&str; 7] = [
+    "SPACE  start / stop the swing",
+    "R      reset to the asset's start",
+    "LEFT / RIGHT  fewer / more lifted balls",
+    "DOWN / UP     fewer / more balls",
+    "H or F1  help / no HUD / status",
+    "S      save a screenshot (PNG)",
+    "ESC    quit",
+];
+
+#[cfg(test)]
+mod tests {
+    use super::{Action, action};
+    use winit::keyboard::{Key, NamedKey, SmolStr};
+
+    #[test]
+    fn every_documented_key_has_its_action() {
+        let ch = |c: &str| Key::Character(SmolStr::new(c));
+        assert_eq!(
+            action(&Key::Named(NamedKey::Space)),
+            Some(Action::TogglePause)
+        );
+        assert_eq!(action(&ch("r")), Some(Action::Reset));
+        assert_eq!(
+            action(&ch("R")),
+            Some(Action::Reset),
+            "with Shift or Caps Lock too"
+        );
+        assert_eq!(
+            action(&Key::Named(NamedKey::ArrowLeft)),
+            Some(Action::Lift(-1))
+        );
+        assert_eq!(
+            action(&Key::Named(NamedKey::ArrowRight)),
+            Some(Action::Lift(1))
+        );
+        assert_eq!(
+            action(&Key::Named(NamedKey::ArrowDown)),
+            Some(Action::Balls(-1))
+        );
+        assert_eq!(
+            action(&Key::Named(NamedKey::ArrowUp)),
+            Some(Action::Balls(1))
+        );
+        assert_eq!(action(&ch("h")), Some(Action::ToggleHud));
+        assert_eq!(action(&Key::Named(NamedKey::F1)), Some(Action::ToggleHud));
+        assert_eq!(action(&ch("s")), Some(Action::Screenshot));
+        assert_eq!(action(&Key::Named(NamedKey::Escape)), Some(Action::Quit));
+        assert_eq!(action(&ch("x")), None);
+        assert_eq!(action(&Key::Named(NamedKey::Tab)), None);
+    }
+}
