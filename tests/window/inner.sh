@@ -55,7 +55,12 @@ sleep 2
 grep -q "config not reloaded.*balls" "$work/app.log" && kill -0 "$pid" 2>/dev/null \
   && ok "keeps the scene on a bad edit" || bad "keeps the scene on a bad edit"
 
-xdotool windowfocus "$wid" 2>/dev/null; xdotool key Escape
+xdotool windowfocus "$wid" 2>/dev/null; xdotool key s; sleep 1
+shotfile=$(ls "$work"/newtons-cradle-*.png 2>/dev/null | head -n 1)
+[ -n "$shotfile" ] && [ "$(identify -format %w "$shotfile")" = "480" ] && grep -q "saved screenshot" "$work/app.log" \
+  && ok "S saves a screenshot at the framebuffer size" || bad "S saves a screenshot"
+
+xdotool key Escape
 code=""
 for _ in $(seq 1 50); do
   if ! kill -0 "$pid" 2>/dev/null; then wait "$pid"; code=$?; break; fi
