@@ -4,11 +4,14 @@
 //! and event loop stay out of the World, the physics and the tracer.
 //!
 //! pixels 0.17.2 reconfigures its surface at the size it last knew and retries,
-//! for ever, when the window has changed size since (parasyte/pixels#460). So every
-//! non-zero size is passed to `resize_surface`; nothing is presented while resize
-//! events keep coming (until `RESIZE_SETTLE` after the last), and the window's size
-//! is checked again just before each render. A storm of resizes then finds no render
-//! in flight to trap.
+//! for ever, when the window has changed size since (parasyte/pixels#460). Checks
+//! before `render()` narrow that window but cannot close it: a resize can land
+//! while `render()` runs (it did, under Xvfb, when tracing starved the resizing
+//! client). So pixels is patched, as upstream #462 does, to give up after a few
+//! tries with `SurfaceOutdated`; then the app waits for the size to settle and
+//! presents again. Besides, every non-zero size goes to `resize_surface`, nothing is
+//! presented while resize events keep coming (until `RESIZE_SETTLE` after the
+//! last), and the window's size is checked again right before each render.
 
 mod hud;
 mod keys;
@@ -439,11 +442,18 @@ impl App {
                 canvas.panel(0, &lines);
             }
         }
-        if let Err(e) = pixels.render() {
-            self.fail(
+        match pixels.render() {
+            Ok(()) => {}
+            Err(pixels::Error::SurfaceOutdated) => {
+                // The window changed size during the render: wait for it to settle,
+                // then present again at the size it has then.
+                tracing::debug!("surface out of date; presenting again once the size settles");
+                self.resizing = Some(Instant::now());
+            }
+            Err(e) => self.fail(
                 event_loop,
                 anyhow::anyhow!("presenting the frame failed: {e}"),
-            );
+            ),
         }
     }
 }
