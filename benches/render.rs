@@ -1,6 +1,8 @@
-//! One 1200x600 frame of the default scene, swinging, on every core.
+//! One 1200x600 frame of the default scene, swinging, on every core; and the HUD
+//! drawn over such a frame, to show it costs nothing next to the trace.
 
 use criterion::{Criterion, criterion_group, criterion_main};
+use newtons_cradle::app::hud::Canvas;
 use newtons_cradle::config::Config;
 use newtons_cradle::scene::CradleWorld;
 use newtons_cradle::trace;
@@ -15,9 +17,32 @@ fn frame(c: &mut Criterion) {
     });
 }
 
+fn hud(c: &mut Criterion) {
+    let mut rgba = vec![128u8; 1200 * 600 * 4];
+    let lines: Vec<(String, [u8; 3])> = [
+        "Newton's cradle   RUNNING",
+        "fps   6.4   trace  146.4 ms   t     7.73 s",
+        "balls 5  lifted 1  contact ideal   energy err -1.3e-16",
+        "H: help",
+    ]
+    .iter()
+    .map(|l| ((*l).to_string(), [235, 235, 235]))
+    .collect();
+    c.bench_function("hud 4 lines over 1200x600", |b| {
+        b.iter(|| {
+            let mut canvas = Canvas {
+                rgba: &mut rgba,
+                width: 1200,
+                height: 600,
+            };
+            canvas.panel(0, std::hint::black_box(&lines))
+        })
+    });
+}
+
 criterion_group! {
     name = benches;
     config = Criterion::default().sample_size(20);
-    targets = frame
+    targets = frame, hud
 }
 criterion_main!(benches);

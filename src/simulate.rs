@@ -4,7 +4,6 @@
 //! product, never a running sum) up to the duration; last `{"summary":{..}}`.
 
 use crate::config::Config;
-use crate::physics::Cradle;
 use serde_json::json;
 use std::io::{self, Write};
 use std::time::Instant;
@@ -52,13 +51,7 @@ pub fn simulate(
         "restitution": p.restitution, "density": config.cradle.density,
     }});
     writeln!(out, "{params}")?;
-    let mut cradle = Cradle::new(
-        p,
-        config.physics.integrator,
-        config.physics.dt,
-        config.start.lift,
-        config.lift_angle(),
-    );
+    let mut cradle = config.build_cradle();
     let e0 = cradle.initial_energy();
     let (mut max_err, mut e_last, mut collisions) = (0.0_f64, e0, 0);
     for n in 0..=sample_count(duration, every) {

@@ -13,7 +13,7 @@
 //! presented while resize events keep coming (until `RESIZE_SETTLE` after the
 //! last), and the window's size is checked again right before each render.
 
-mod hud;
+pub mod hud;
 mod keys;
 mod reload;
 

@@ -364,6 +364,18 @@ impl Config {
         }
     }
 
+    /// The cradle this config starts: its physics, integrator and lifted balls.
+    #[must_use]
+    pub fn build_cradle(&self) -> crate::physics::Cradle {
+        crate::physics::Cradle::new(
+            self.cradle_params(),
+            self.physics.integrator,
+            self.physics.dt,
+            self.start.lift,
+            self.lift_angle(),
+        )
+    }
+
     /// Lift angle in radians.
     #[must_use]
     pub fn lift_angle(&self) -> f64 {

@@ -6,7 +6,6 @@ use super::components::{
     Shape, SimClock, SimState, Strand, StrandOf, Transform,
 };
 use crate::config::{Config, MaterialConfig};
-use crate::physics::Cradle;
 use crate::trace;
 use bevy_ecs::prelude::*;
 use glam::{DVec3, Vec3};
@@ -100,19 +99,9 @@ pub fn respawn(world: &mut World, config: &Config) {
 }
 
 fn insert_resources(world: &mut World, config: &Config) {
-    let cradle = Cradle::new(
-        config.cradle_params(),
-        config.physics.integrator,
-        config.physics.dt,
-        config.start.lift,
-        config.lift_angle(),
-    );
-    let mut cradle_for_state = cradle.clone();
-    let snapshot = cradle_for_state.snapshot(0.0);
-    world.insert_resource(CradleState {
-        cradle: cradle_for_state,
-        snapshot,
-    });
+    let mut cradle = config.build_cradle();
+    let snapshot = cradle.snapshot(0.0);
+    world.insert_resource(CradleState { cradle, snapshot });
     world.insert_resource(SimClock::default());
     world.insert_resource(if config.start.running {
         SimState::Running

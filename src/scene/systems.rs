@@ -6,7 +6,6 @@ use super::components::{
 };
 use super::spawn::{attach_point, ball_transform};
 use crate::config::LightConfig;
-use crate::physics::Cradle;
 use crate::trace;
 use bevy_ecs::prelude::*;
 use glam::{DVec3, Vec3};
@@ -50,13 +49,7 @@ pub fn apply_controls(
             }
             Control::Reset => {
                 let c = &config.0;
-                let mut cradle = Cradle::new(
-                    c.cradle_params(),
-                    c.physics.integrator,
-                    c.physics.dt,
-                    c.start.lift,
-                    c.lift_angle(),
-                );
+                let mut cradle = c.build_cradle();
                 let snapshot = cradle.snapshot(0.0);
                 *sim = CradleState { cradle, snapshot };
                 clock.t = 0.0;
