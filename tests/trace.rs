@@ -342,3 +342,67 @@ fn the_whole_cradle_is_in_view_at_the_default_camera() {
         );
     }
 }
+
+#[test]
+fn srgb_bytes_round_the_standard_curve_to_nearest() {
+    use newtons_cradle::trace::render::srgb8;
+    // Against the IEC 61966-2-1 formula evaluated in f64, away from the decision
+    // points (a value within 1e-6 of one may round either way in f32).
+    for i in 0..=10_000 {
+        let x = f64::from(i) / 10_000.0;
+        let s = if x <= 0.003_130_8 {
+            12.92 * x
+        } else {
+            1.055 * x.powf(1.0 / 2.4) - 0.055
+        };
+        let exact = s * 255.0;
+        if (exact - exact.floor() - 0.5).abs() < 1e-3 {
+            continue;
+        }
+        assert_eq!(srgb8(x as f32), exact.round() as u8, "linear {x}");
+    }
+    assert_eq!(
+        (
+            srgb8(-1.0),
+            srgb8(0.0),
+            srgb8(1.0),
+            srgb8(7.0),
+            srgb8(f32::NAN)
+        ),
+        (0, 0, 255, 255, 0)
+    );
+}
+
+#[test]
+fn tile_culling_leaves_every_byte_as_the_full_render_makes_it() {
+    use newtons_cradle::trace::{RenderOptions, render_serial_with};
+    // Swinging cradles of several sizes and lifts, at times spread over a swing,
+    // and a camera close enough that shapes reach past the picture's edges.
+    for (balls, lift, gap, t) in [
+        (5, 1, 0.0, 0.0),
+        (5, 2, 0.0, 0.37),
+        (9, 3, 0.002, 0.8),
+        (20, 3, 0.001, 1.3),
+    ] {
+        let mut config = Config::default();
+        config.render.width = 300;
+        config.render.height = 150;
+        config.cradle.balls = balls;
+        config.cradle.gap = gap;
+        config.start.lift = lift;
+        let mut world = CradleWorld::new(&config);
+        world.show_at(t);
+        let mut s = world.scene().clone();
+        let full = render_serial_with(&s, RenderOptions::FULL);
+        assert!(
+            render_serial_with(&s, RenderOptions::FAST) == full,
+            "{balls} balls at t = {t}"
+        );
+        s.camera.position = Vec3::new(0.05, 0.16, 0.12);
+        let full = render_serial_with(&s, RenderOptions::FULL);
+        assert!(
+            render_serial_with(&s, RenderOptions::FAST) == full,
+            "{balls} balls at t = {t}, close up"
+        );
+    }
+}

@@ -82,11 +82,12 @@ pub fn impact(
     // put the faster on the slower's angle (a shift of the root-finding error, ~1e-16
     // rad) so that balls between stay exactly at rest and outgoing ones move alike.
     if p.gap == 0.0 && (theta[a] - theta[b]).abs() < 1e-9 {
-        if omega[a].abs() > omega[b].abs() {
-            theta[a] = theta[b];
+        let (moved, onto) = if omega[a].abs() > omega[b].abs() {
+            (a, b)
         } else {
-            theta[b] = theta[a];
-        }
+            (b, a)
+        };
+        snap(p, theta, omega, moved, onto);
     }
     let vn = closing_speed(p, (theta[a], omega[a]), (theta[b], omega[b]));
     let counted = -vn >= r.rest_speed;
@@ -116,6 +117,19 @@ pub fn impact(
         omega[b] += lambda * jb;
     }
     (a..=b, counted)
+}
+
+/// Puts ball `moved` on ball `onto`'s angle and rescales its speed so that its own
+/// energy is unchanged: the shift is the root-finding error, but with short strings
+/// and large angles the potential energy it moves would otherwise show.
+fn snap(p: &CradleParams, theta: &mut [f64], omega: &mut [f64], moved: usize, onto: usize) {
+    let (old, new) = (theta[moved], theta[onto]);
+    let (so, sn) = ((0.5 * old).sin(), (0.5 * new).sin());
+    // I w'^2 / 2 + 2 m g L sn^2 = I w^2 / 2 + 2 m g L so^2.
+    let gain = 4.0 * p.mass * p.gravity * p.length / p.inertia() * (so - sn) * (so + sn);
+    let w2 = omega[moved] * omega[moved] + gain;
+    omega[moved] = omega[moved].signum() * w2.max(0.0).sqrt();
+    theta[moved] = new;
 }
 
 /// Resting contact in a touching chain (gap 0): every ball touching `a` at the same

@@ -42,6 +42,24 @@ impl CameraRays {
         }
     }
 
+    /// The picture point (pixels) that `point` projects to, or `None` when it is
+    /// not in front of the eye.
+    #[must_use]
+    pub fn project(&self, point: Vec3) -> Option<(f32, f32)> {
+        let v = point - self.origin;
+        let depth = v.dot(self.forward);
+        if depth <= 1e-6 {
+            return None;
+        }
+        // right and up carry the half-extents of the image plane at distance 1.
+        let sx = v.dot(self.right) / (depth * self.right.length_squared());
+        let sy = v.dot(self.up) / (depth * self.up.length_squared());
+        Some((
+            (sx + 1.0) * 0.5 * self.width,
+            (1.0 - sy) * 0.5 * self.height,
+        ))
+    }
+
     /// The ray through picture point `(x, y)` in pixels, (0, 0) the top-left corner.
     #[must_use]
     pub fn ray(&self, x: f32, y: f32) -> Ray {

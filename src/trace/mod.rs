@@ -10,7 +10,8 @@ pub mod prepared;
 pub mod render;
 pub mod scene;
 pub mod shade;
+pub mod tiles;
 
 pub use prepared::Prepared;
-pub use render::{Image, pool, render, render_serial};
+pub use render::{Image, RenderOptions, pool, render, render_serial, render_serial_with};
 pub use scene::{Camera, Light, Material, Object, Scene, Shape};

@@ -83,6 +83,43 @@ impl<'a> Prepared<'a> {
         }
     }
 
+    /// Planes first, then bounded objects: the order every hit query considers
+    /// objects in, so that ties in distance always resolve the same way.
+    #[must_use]
+    pub fn query_order(&self) -> Vec<usize> {
+        self.planes
+            .iter()
+            .copied()
+            .chain(self.bounded.iter().map(|b| b.0))
+            .collect()
+    }
+
+    /// Bounds of every bounded object, in query order after the planes.
+    #[must_use]
+    pub fn bounds(&self) -> &[(usize, Aabb)] {
+        &self.bounded
+    }
+
+    /// The nearest hit before `t_max` among `candidates` (indices in query order),
+    /// which must include every object the ray can hit: primary rays of a tile.
+    #[must_use]
+    pub fn closest_among(&self, ray: &Ray, t_max: f32, candidates: &[usize]) -> Option<Hit> {
+        let mut best: Option<(f32, usize, Vec3)> = None;
+        for &i in candidates {
+            let limit = best.map_or(t_max, |b| b.0);
+            if let Some((t, n)) = Self::hit_object(&self.scene.objects[i], ray)
+                && t < limit
+            {
+                best = Some((t, i, n));
+            }
+        }
+        best.map(|(t, object, n)| Hit {
+            t,
+            object,
+            normal: if n.dot(ray.dir) > 0.0 { -n } else { n },
+        })
+    }
+
     /// The nearest hit before `t_max`.
     #[must_use]
     pub fn closest(&self, ray: &Ray, t_max: f32) -> Option<Hit> {

@@ -4,7 +4,8 @@
 use super::camera::CameraRays;
 use super::prepared::Prepared;
 use super::scene::Scene;
-use super::shade::{radiance_bound, trace};
+use super::shade::{radiance_bound, trace, trace_primary};
+use super::tiles::Tiles;
 use glam::Vec3;
 use rayon::prelude::*;
 
@@ -19,16 +20,30 @@ pub struct Image {
     pub rgba: Vec<u8>,
 }
 
-/// Linear [0, 1] to an sRGB byte (IEC 61966-2-1), clamping out-of-range values.
+/// `THRESHOLDS[b]` is the linear value at which the sRGB byte becomes `b + 1`: the
+/// decoded midpoint `(b + 0.5) / 255`, computed in f64 once.
+fn thresholds() -> &'static [f32; 255] {
+    static T: std::sync::OnceLock<[f32; 255]> = std::sync::OnceLock::new();
+    T.get_or_init(|| {
+        std::array::from_fn(|b| {
+            let s = (b as f64 + 0.5) / 255.0;
+            let linear = if s <= 0.040_45 {
+                s / 12.92
+            } else {
+                ((s + 0.055) / 1.055).powf(2.4)
+            };
+            linear as f32
+        })
+    })
+}
+
+/// Linear [0, 1] to an sRGB byte (IEC 61966-2-1), rounded to the nearest byte and
+/// clamping out-of-range values: the count of decision points at or below the
+/// value, found by binary search instead of a `powf` per channel.
 #[must_use]
 pub fn srgb8(linear: f32) -> u8 {
-    let x = linear.clamp(0.0, 1.0);
-    let s = if x <= 0.003_130_8 {
-        12.92 * x
-    } else {
-        1.055 * x.powf(1.0 / 2.4) - 0.055
-    };
-    (s * 255.0 + 0.5) as u8
+    // NaN counts as 0, like the clamp it replaces.
+    thresholds().partition_point(|&t| t <= linear) as u8
 }
 
 /// Sub-pixel sample offsets: the pixel centre for one sample, else the first `n`
@@ -51,9 +66,27 @@ pub fn sample_offsets(n: u32) -> Vec<(f32, f32)> {
         .collect()
 }
 
+/// Which work-skipping the renderer may use. Each leaves the picture byte for byte
+/// as the full render makes it (tested); turning them off gives that reference.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct RenderOptions {
+    /// Primary rays test only the objects whose screen bounds cover their tile.
+    pub tile_culling: bool,
+}
+
+impl RenderOptions {
+    /// Every skip on: what the app, `render` and `bench` use.
+    pub const FAST: Self = Self { tile_culling: true };
+    /// Nothing skipped: the reference the skips are tested against.
+    pub const FULL: Self = Self {
+        tile_culling: false,
+    };
+}
+
 /// Everything one row needs, shared by the serial and parallel paths.
 struct Frame<'a> {
     prepared: Prepared<'a>,
+    tiles: Option<Tiles>,
     camera: CameraRays,
     offsets: Vec<(f32, f32)>,
     bound: f32,
@@ -61,11 +94,15 @@ struct Frame<'a> {
 }
 
 impl<'a> Frame<'a> {
-    fn new(scene: &'a Scene) -> Self {
+    fn new(scene: &'a Scene, options: RenderOptions) -> Self {
         let prepared = Prepared::new(scene);
         let bound = radiance_bound(&prepared);
+        let camera = CameraRays::new(&scene.camera, scene.size.0, scene.size.1);
         Self {
-            camera: CameraRays::new(&scene.camera, scene.size.0, scene.size.1),
+            tiles: options
+                .tile_culling
+                .then(|| Tiles::new(&prepared, &camera, scene.size.0, scene.size.1)),
+            camera,
             offsets: sample_offsets(scene.samples),
             prepared,
             bound,
@@ -80,7 +117,10 @@ impl<'a> Frame<'a> {
             .iter()
             .map(|&(dx, dy)| {
                 let ray = self.camera.ray(x as f32 + dx, y as f32 + dy);
-                trace(&self.prepared, &ray, 0, 1.0, self.bound)
+                match &self.tiles {
+                    Some(t) => trace_primary(&self.prepared, &ray, t.at(x, y), self.bound),
+                    None => trace(&self.prepared, &ray, 0, 1.0, self.bound),
+                }
             })
             .sum();
         sum / self.offsets.len() as f32
@@ -103,10 +143,18 @@ fn blank(scene: &Scene) -> Image {
     }
 }
 
-/// The reference renderer: one row after another on this thread.
+/// One row after another on this thread, with every skip: the serial twin of
+/// [`render`].
 #[must_use]
 pub fn render_serial(scene: &Scene) -> Image {
-    let frame = Frame::new(scene);
+    render_serial_with(scene, RenderOptions::FAST)
+}
+
+/// One row after another on this thread with the given skips;
+/// `RenderOptions::FULL` is the reference renderer.
+#[must_use]
+pub fn render_serial_with(scene: &Scene, options: RenderOptions) -> Image {
+    let frame = Frame::new(scene, options);
     let mut img = blank(scene);
     let stride = img.width as usize * 4;
     for (y, row) in img.rgba.chunks_exact_mut(stride).enumerate() {
@@ -118,7 +166,7 @@ pub fn render_serial(scene: &Scene) -> Image {
 /// Rows in parallel on the current rayon pool; byte-identical to [`render_serial`].
 #[must_use]
 pub fn render(scene: &Scene) -> Image {
-    let frame = Frame::new(scene);
+    let frame = Frame::new(scene, RenderOptions::FAST);
     let mut img = blank(scene);
     let stride = img.width as usize * 4;
     img.rgba

@@ -9,7 +9,7 @@
 //! contribution is then 0.
 
 use super::geometry::Ray;
-use super::prepared::Prepared;
+use super::prepared::{Hit, Prepared};
 use super::scene::{Light, Material};
 use glam::Vec3;
 
@@ -54,7 +54,27 @@ fn base_color(m: &Material, point: Vec3) -> Vec3 {
 /// of reflective factors so far, `bound` from [`radiance_bound`].
 #[must_use]
 pub fn trace(p: &Prepared<'_>, ray: &Ray, depth: u32, weight: f32, bound: f32) -> Vec3 {
-    let Some(hit) = p.closest(ray, f32::INFINITY) else {
+    let hit = p.closest(ray, f32::INFINITY);
+    shade(p, ray, hit, depth, weight, bound)
+}
+
+/// [`trace`] for a primary ray whose possible hits are `candidates` (its tile's).
+#[must_use]
+pub fn trace_primary(p: &Prepared<'_>, ray: &Ray, candidates: &[usize], bound: f32) -> Vec3 {
+    let hit = p.closest_among(ray, f32::INFINITY, candidates);
+    shade(p, ray, hit, 0, 1.0, bound)
+}
+
+/// The radiance of `hit` (or the background for none) seen along `ray`.
+fn shade(
+    p: &Prepared<'_>,
+    ray: &Ray,
+    hit: Option<Hit>,
+    depth: u32,
+    weight: f32,
+    bound: f32,
+) -> Vec3 {
+    let Some(hit) = hit else {
         return p.scene.background;
     };
     let m = &p.scene.objects[hit.object].material;
