@@ -15,6 +15,15 @@ fn frame(c: &mut Criterion) {
     c.bench_function("render 1200x600 default scene", |b| {
         b.iter(|| trace::render(std::hint::black_box(&scene)))
     });
+    // The skips against the reference, serially: their ratio is what they save.
+    for (name, options) in [
+        ("full", trace::RenderOptions::FULL),
+        ("fast", trace::RenderOptions::FAST),
+    ] {
+        c.bench_function(&format!("render 1200x600 serial {name}"), |b| {
+            b.iter(|| trace::render_serial_with(std::hint::black_box(&scene), options))
+        });
+    }
 }
 
 fn hud(c: &mut Criterion) {
