@@ -13,7 +13,7 @@ use std::time::Instant;
 pub struct Row {
     /// Worker threads.
     pub threads: usize,
-    /// `full`: every pixel traced each frame.
+    /// `full`: every pixel traced each frame; `incremental`: only what motion can change.
     pub mode: &'static str,
     /// Picture size.
     pub width: u32,
@@ -61,29 +61,36 @@ pub fn bench_render(
     let mut rows = Vec::new();
     for &n in threads {
         let pool = trace::pool(n)?;
-        let mut world = CradleWorld::new(config);
-        world.send(Control::TogglePause);
-        let mut times = Vec::new();
-        for f in 0..frames + 2 {
-            world.show_at(0.5 + f64::from(f) / 60.0);
-            let start = Instant::now();
-            let img = pool.install(|| trace::render(world.scene()));
-            let ms = start.elapsed().as_secs_f64() * 1e3;
-            std::hint::black_box(img);
-            if f >= 2 {
-                times.push(ms);
+        for mode in ["full", "incremental"] {
+            let mut world = CradleWorld::new(config);
+            world.send(Control::TogglePause);
+            let mut inc = trace::Incremental::new();
+            let mut times = Vec::new();
+            // Two warm-up frames (the first incremental one is traced in full).
+            for f in 0..frames + 2 {
+                world.show_at(0.5 + f64::from(f) / 60.0);
+                let start = Instant::now();
+                if mode == "full" {
+                    std::hint::black_box(pool.install(|| trace::render(world.scene())));
+                } else {
+                    std::hint::black_box(pool.install(|| inc.render(world.scene()).rgba.len()));
+                }
+                let ms = start.elapsed().as_secs_f64() * 1e3;
+                if f >= 2 {
+                    times.push(ms);
+                }
             }
+            let row = Row {
+                threads: n,
+                mode,
+                width: config.render.width,
+                height: config.render.height,
+                ms_median: median(times),
+                frames,
+            };
+            each(&row);
+            rows.push(row);
         }
-        let row = Row {
-            threads: n,
-            mode: "full",
-            width: config.render.width,
-            height: config.render.height,
-            ms_median: median(times),
-            frames,
-        };
-        each(&row);
-        rows.push(row);
     }
     Ok(rows)
 }

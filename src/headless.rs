@@ -31,9 +31,11 @@ pub enum Output {
 pub fn render(config: &Config, start: f64, output: &Output) -> anyhow::Result<Vec<PathBuf>> {
     let pool = trace::pool(config.render.threads)?;
     let mut world = CradleWorld::new(config);
+    // Frames after the first re-trace only what the swing can change.
+    let mut inc = trace::Incremental::new();
     let mut frame_at = |t: f64| -> Image {
         world.show_at(t);
-        pool.install(|| trace::render(world.scene()))
+        pool.install(|| inc.render(world.scene()).clone())
     };
     let mut written = Vec::new();
     match output {

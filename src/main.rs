@@ -125,7 +125,7 @@ fn run(cli: &Cli) -> Result<(), Failure> {
                     "{}x{}, {} balls, median of {frames} frames of a swinging cradle",
                     config.render.width, config.render.height, config.cradle.balls
                 )?;
-                writeln!(out, "threads  mode  ms/frame  speed-up")?;
+                writeln!(out, "threads  mode         ms/frame  vs 1 thread full")?;
             }
             let mut base = None;
             bench::bench_render(&config, &threads, frames, |row| {
@@ -134,7 +134,7 @@ fn run(cli: &Cli) -> Result<(), Failure> {
                 } else {
                     let b = *base.get_or_insert(row.ms_median);
                     format!(
-                        "{:>7}  {:<4}  {:>8.2}  {:>7.2}x",
+                        "{:>7}  {:<11}  {:>8.2}  {:>7.2}x",
                         row.threads,
                         row.mode,
                         row.ms_median,

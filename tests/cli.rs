@@ -346,17 +346,21 @@ fn render_refuses_unwritable_paths_and_missing_outputs_with_exit_2() {
 }
 
 #[test]
-fn bench_render_prints_one_json_line_per_thread_count() {
+fn bench_render_prints_full_and_incremental_json_lines_per_thread_count() {
     let o = run(&[
         "bench", "render", "--json", "--frames", "2", "--width", "48", "--height", "24",
     ]);
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     let v = lines(&o);
     let cores = std::thread::available_parallelism().map_or(1, std::num::NonZero::get);
-    assert_eq!(v.len(), cores);
+    assert_eq!(
+        v.len(),
+        2 * cores,
+        "a full and an incremental row per thread count"
+    );
     for (i, row) in v.iter().enumerate() {
-        assert_eq!(row["threads"].as_u64(), Some(i as u64 + 1));
-        assert_eq!(row["mode"], "full");
+        assert_eq!(row["threads"].as_u64(), Some(i as u64 / 2 + 1));
+        assert_eq!(row["mode"], if i % 2 == 0 { "full" } else { "incremental" });
         assert_eq!(
             (row["width"].as_u64(), row["height"].as_u64()),
             (Some(48), Some(24))

@@ -5,7 +5,7 @@ use glam::Vec3;
 use newtons_cradle::config::Config;
 use newtons_cradle::scene::CradleWorld;
 use newtons_cradle::trace::geometry::{Ray, hit_cylinder, hit_plane, hit_sphere};
-use newtons_cradle::trace::shade::{radiance_bound, trace};
+use newtons_cradle::trace::shade::{Motion, radiance_bound, trace};
 use newtons_cradle::trace::{self, Camera, Light, Material, Object, Prepared, Scene, Shape};
 
 /// f32 arithmetic on metre-sized numbers: a few ulps of 1 m.
@@ -105,6 +105,7 @@ fn scene(objects: Vec<Object>, lights: Vec<Light>, size: (u32, u32)) -> Scene {
         size,
         max_depth: 3,
         samples: 1,
+        motion_bounds: None,
     }
 }
 
@@ -118,7 +119,7 @@ fn sphere(centre: Vec3, radius: f32, material: Material) -> Object {
 
 fn radiance(s: &Scene, r: &Ray) -> Vec3 {
     let p = Prepared::new(s);
-    trace(&p, r, 0, 1.0, radiance_bound(&p))
+    trace(&p, r, 0, 1.0, radiance_bound(&p), &mut Motion::new(None))
 }
 
 #[test]
@@ -405,4 +406,62 @@ fn tile_culling_leaves_every_byte_as_the_full_render_makes_it() {
             "{balls} balls at t = {t}, close up"
         );
     }
+}
+
+#[test]
+fn incremental_frames_equal_full_renders_over_300_frames_of_a_swing() {
+    use newtons_cradle::trace::{Incremental, RenderOptions, render_serial_with};
+    for (balls, lift, gap) in [(5, 1, 0.0), (5, 2, 0.0), (20, 3, 0.0), (5, 1, 0.002)] {
+        let mut config = Config::default();
+        config.render.width = 160;
+        config.render.height = 80;
+        config.cradle.balls = balls;
+        config.cradle.gap = gap;
+        config.start.lift = lift;
+        config.start.running = true;
+        let mut world = CradleWorld::new(&config);
+        let mut inc = Incremental::new();
+        for n in 0..300 {
+            world.show_at(f64::from(n) / 60.0);
+            let scene = world.scene();
+            let full = render_serial_with(scene, RenderOptions::FULL);
+            let frame = inc.render(scene);
+            assert!(
+                *frame == full,
+                "{balls} balls, {lift} lifted, gap {gap}: frame {n} differs"
+            );
+            assert_eq!(
+                inc.last_was_full(),
+                n == 0,
+                "only the first frame is traced in full"
+            );
+        }
+        let share = inc.dynamic_share();
+        assert!(
+            share > 0.0 && share < 0.9,
+            "{balls} balls: re-traces {share:.2} of the pixels"
+        );
+    }
+}
+
+#[test]
+fn incremental_renders_in_full_when_anything_static_changes() {
+    use newtons_cradle::trace::Incremental;
+    let mut world = CradleWorld::new(&Config::default());
+    world.show_at(0.2);
+    let mut s = world.scene().clone();
+    let mut inc = Incremental::new();
+    let _ = inc.render(&s);
+    let _ = inc.render(&s);
+    assert!(!inc.last_was_full());
+    s.camera.fov_deg += 1.0;
+    let _ = inc.render(&s);
+    assert!(inc.last_was_full(), "a new camera");
+    s.lights.pop();
+    let _ = inc.render(&s);
+    assert!(inc.last_was_full(), "a light less");
+    s.motion_bounds = None;
+    let _ = inc.render(&s);
+    let _ = inc.render(&s);
+    assert!(inc.last_was_full(), "no motion box: nothing can be reused");
 }

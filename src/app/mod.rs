@@ -136,7 +136,8 @@ struct App {
     window: Option<Arc<Window>>,
     pixels: Option<Pixels<'static>>,
     surface: (u32, u32),
-    image: Option<Image>,
+    /// Traces frames, re-tracing only what the swing can change.
+    renderer: trace::Incremental,
     /// The scene changed while paused: trace once more.
     retrace: bool,
     last_frame: Option<Instant>,
@@ -162,7 +163,7 @@ impl App {
             window: None,
             pixels: None,
             surface: (0, 0),
-            image: None,
+            renderer: trace::Incremental::new(),
             retrace: true,
             last_frame: None,
             stats: Stats::default(),
@@ -324,13 +325,16 @@ impl App {
     fn step(&mut self) {
         let now = Instant::now();
         let running = self.running();
-        if running || self.retrace || self.image.is_none() {
+        if running || self.retrace || self.renderer.image().is_none() {
             let dt = self
                 .last_frame
                 .map_or(0.0, |t| (now - t).as_secs_f64().min(MAX_FRAME_DT));
             self.world.frame(if running { dt } else { 0.0 });
             let start = Instant::now();
-            self.image = Some(self.pool.install(|| trace::render(self.world.scene())));
+            let (pool, renderer, world) = (&self.pool, &mut self.renderer, &self.world);
+            pool.install(|| {
+                renderer.render(world.scene());
+            });
             let ms = start.elapsed().as_secs_f64() * 1e3;
             if running && dt > 0.0 {
                 // Exponential smoothing over ~10 frames keeps the numbers readable.
@@ -427,7 +431,7 @@ impl App {
             }
             self.surface = (size.width, size.height);
         }
-        if let Some(img) = &self.image {
+        if let Some(img) = self.renderer.image() {
             let frame = pixels.frame_mut();
             if frame.len() == img.rgba.len() {
                 frame.copy_from_slice(&img.rgba);

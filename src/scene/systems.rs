@@ -119,6 +119,33 @@ fn arr3(a: [f64; 3]) -> Vec3 {
     Vec3::new(a[0] as f32, a[1] as f32, a[2] as f32)
 }
 
+/// A box holding every position balls and strings can take at any time.
+///
+/// Energy bounds the swing: the exact engine never adds energy (a tested property),
+/// and no ball can hold more than all of it, so with `k` balls lifted to `A` no ball
+/// passes `theta_max = 2 asin(sqrt(k) sin(A/2))` (exactly `A` for one ball).
+/// Fixed-step integrators can gain energy, so for them any angle is allowed. Strings
+/// run from the rails (at `+-rail_spread`, height `pivot_height`) to the balls.
+fn motion_bounds(config: &crate::config::Config) -> (Vec3, Vec3) {
+    let layout = super::spawn::Layout::new(config);
+    let c = &config.cradle;
+    let theta_max = if config.physics.integrator == crate::physics::Integrator::Exact {
+        let s = (config.start.lift as f64).sqrt() * (0.5 * config.lift_angle()).sin();
+        2.0 * s.min(1.0).asin()
+    } else {
+        std::f64::consts::PI
+    };
+    let side = c.length * theta_max.min(std::f64::consts::FRAC_PI_2).sin();
+    let reach = c.radius + c.string_radius;
+    let (first, last) = (layout.pivot(0), layout.pivot(c.balls - 1));
+    let top = (first.y - c.length * theta_max.cos()).max(first.y);
+    let z = c.rail_spread + c.string_radius;
+    let lo = DVec3::new(first.x - side - reach, first.y - c.length - reach, -z);
+    let hi = DVec3::new(last.x + side + reach, top + reach, z);
+    // f32 rounding of the corners must not shrink the box: widen by a micrometre.
+    (v3(lo) - Vec3::splat(1e-6), v3(hi) + Vec3::splat(1e-6))
+}
+
 /// Extract: gathers shapes, materials, lights and camera into the flat scene.
 pub fn extract(
     objects: Drawables,
@@ -187,4 +214,5 @@ pub fn extract(
     scene.size = (r.width, r.height);
     scene.max_depth = r.max_depth;
     scene.samples = r.samples;
+    scene.motion_bounds = Some(motion_bounds(&config.0));
 }

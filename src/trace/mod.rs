@@ -13,5 +13,7 @@ pub mod shade;
 pub mod tiles;
 
 pub use prepared::Prepared;
-pub use render::{Image, RenderOptions, pool, render, render_serial, render_serial_with};
+pub use render::{
+    Image, Incremental, RenderOptions, pool, render, render_serial, render_serial_with,
+};
 pub use scene::{Camera, Light, Material, Object, Scene, Shape};

@@ -2,9 +2,10 @@
 //! rayon or serially; both run the same per-pixel code, so their bytes are equal.
 
 use super::camera::CameraRays;
+use super::geometry::Aabb;
 use super::prepared::Prepared;
 use super::scene::Scene;
-use super::shade::{radiance_bound, trace, trace_primary};
+use super::shade::{Motion, radiance_bound, trace, trace_primary};
 use super::tiles::Tiles;
 use glam::Vec3;
 use rayon::prelude::*;
@@ -91,6 +92,7 @@ struct Frame<'a> {
     offsets: Vec<(f32, f32)>,
     bound: f32,
     width: u32,
+    motion: Option<Aabb>,
 }
 
 impl<'a> Frame<'a> {
@@ -107,29 +109,49 @@ impl<'a> Frame<'a> {
             prepared,
             bound,
             width: scene.size.0,
+            motion: scene.motion_bounds.map(|(min, max)| Aabb { min, max }),
         }
     }
 
-    /// The linear colour of pixel `(x, y)`.
-    fn pixel(&self, x: u32, y: u32) -> Vec3 {
+    /// The linear colour of pixel `(x, y)`, and whether any of its rays entered the
+    /// moving objects' box.
+    fn pixel(&self, x: u32, y: u32) -> (Vec3, bool) {
+        let mut motion = Motion::new(self.motion);
         let sum: Vec3 = self
             .offsets
             .iter()
             .map(|&(dx, dy)| {
                 let ray = self.camera.ray(x as f32 + dx, y as f32 + dy);
                 match &self.tiles {
-                    Some(t) => trace_primary(&self.prepared, &ray, t.at(x, y), self.bound),
-                    None => trace(&self.prepared, &ray, 0, 1.0, self.bound),
+                    Some(t) => {
+                        trace_primary(&self.prepared, &ray, t.at(x, y), self.bound, &mut motion)
+                    }
+                    None => trace(&self.prepared, &ray, 0, 1.0, self.bound, &mut motion),
                 }
             })
             .sum();
-        sum / self.offsets.len() as f32
+        (sum / self.offsets.len() as f32, motion.touched)
     }
 
-    fn row(&self, y: u32, out: &mut [u8]) {
-        for (x, px) in (0..self.width).zip(out.chunks_exact_mut(4)) {
-            let c = self.pixel(x, y);
-            px.copy_from_slice(&[srgb8(c.x), srgb8(c.y), srgb8(c.z), 255]);
+    fn put(&self, x: u32, y: u32, px: &mut [u8]) -> bool {
+        let (c, touched) = self.pixel(x, y);
+        px.copy_from_slice(&[srgb8(c.x), srgb8(c.y), srgb8(c.z), 255]);
+        touched
+    }
+
+    /// Traces a whole row; returns the pixels whose rays entered the motion box.
+    fn row(&self, y: u32, out: &mut [u8]) -> Vec<u32> {
+        (0..self.width)
+            .zip(out.chunks_exact_mut(4))
+            .filter_map(|(x, px)| self.put(x, y, px).then_some(x))
+            .collect()
+    }
+
+    /// Traces only pixels `xs` of a row.
+    fn some(&self, y: u32, xs: &[u32], out: &mut [u8]) {
+        for &x in xs {
+            let i = x as usize * 4;
+            self.put(x, y, &mut out[i..i + 4]);
         }
     }
 }
@@ -172,8 +194,103 @@ pub fn render(scene: &Scene) -> Image {
     img.rgba
         .par_chunks_exact_mut(stride)
         .enumerate()
-        .for_each(|(y, row)| frame.row(y as u32, row));
+        .for_each(|(y, row)| {
+            frame.row(y as u32, row);
+        });
     img
+}
+
+/// The scene with the moving objects' shapes left out: while it stays the same, a
+/// pixel whose rays never entered the motion box keeps its bytes.
+fn static_part(scene: &Scene) -> Scene {
+    let mut s = scene.clone();
+    for o in s.objects.iter_mut().filter(|o| o.moving) {
+        o.shape = super::scene::Shape::Sphere {
+            centre: Vec3::ZERO,
+            radius: 0.0,
+        };
+    }
+    s
+}
+
+/// Renders frame after frame, re-tracing only what motion can change: after a full
+/// frame, only the pixels whose rays entered the box that holds every moving object
+/// (`Scene::motion_bounds`). Every frame is byte-identical to a full render: the
+/// other pixels' rays meet no moving object, and the rest of the scene is the same.
+/// Anything else changing (camera, lights, size, a static object) brings a full frame.
+#[derive(Debug, Default)]
+pub struct Incremental {
+    key: Option<Scene>,
+    image: Option<Image>,
+    /// Per row, the pixels to re-trace.
+    dynamic: Vec<Vec<u32>>,
+    full: bool,
+}
+
+impl Incremental {
+    /// A renderer with nothing cached: its first frame is full.
+    #[must_use]
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Renders `scene` on the current rayon pool and returns the picture.
+    pub fn render(&mut self, scene: &Scene) -> &Image {
+        let key = static_part(scene);
+        let frame = Frame::new(scene, RenderOptions::FAST);
+        let reuse = scene.motion_bounds.is_some()
+            && self.image.is_some()
+            && self.key.as_ref() == Some(&key);
+        self.full = !reuse;
+        if reuse {
+            let img = self.image.as_mut().expect("checked above");
+            let stride = img.width as usize * 4;
+            img.rgba
+                .par_chunks_exact_mut(stride)
+                .zip(self.dynamic.par_iter())
+                .enumerate()
+                .for_each(|(y, (row, xs))| {
+                    if !xs.is_empty() {
+                        frame.some(y as u32, xs, row);
+                    }
+                });
+        } else {
+            let mut img = blank(scene);
+            let stride = img.width as usize * 4;
+            self.dynamic = img
+                .rgba
+                .par_chunks_exact_mut(stride)
+                .enumerate()
+                .map(|(y, row)| frame.row(y as u32, row))
+                .collect();
+            self.image = Some(img);
+            self.key = Some(key);
+        }
+        self.image.as_ref().expect("rendered above")
+    }
+
+    /// The last picture rendered.
+    #[must_use]
+    pub fn image(&self) -> Option<&Image> {
+        self.image.as_ref()
+    }
+
+    /// Whether the last frame was traced in full.
+    #[must_use]
+    pub fn last_was_full(&self) -> bool {
+        self.full
+    }
+
+    /// Share of pixels re-traced in frames after a full one (0..=1).
+    #[must_use]
+    pub fn dynamic_share(&self) -> f64 {
+        let n: usize = self.dynamic.iter().map(Vec::len).sum();
+        let total = self
+            .image
+            .as_ref()
+            .map_or(1, |i| (i.width * i.height) as usize);
+        n as f64 / total.max(1) as f64
+    }
 }
 
 /// A rayon pool of `threads` workers (0: one per core).

@@ -77,6 +77,10 @@ pub struct Scene {
     pub max_depth: u32,
     /// Samples per pixel.
     pub samples: u32,
+    /// A box every moving object stays inside at every time (min, max corners), if
+    /// known: pixels whose rays never enter it never change while the rest of the
+    /// scene stays the same.
+    pub motion_bounds: Option<(Vec3, Vec3)>,
 }
 
 impl Default for Scene {
@@ -93,6 +97,7 @@ impl Default for Scene {
             size: (16, 16),
             max_depth: 0,
             samples: 1,
+            motion_bounds: None,
         }
     }
 }

@@ -8,7 +8,7 @@
 //! steepest slope of the sRGB curve) is below half an 8-bit step, 0.5/255. Its
 //! contribution is then 0.
 
-use super::geometry::Ray;
+use super::geometry::{Aabb, Ray};
 use super::prepared::{Hit, Prepared};
 use super::scene::{Light, Material};
 use glam::Vec3;
@@ -18,6 +18,36 @@ const SURFACE_OFFSET: f32 = 2e-5;
 
 /// Half an 8-bit step, divided by the steepest slope of the sRGB encoding.
 const BAILOUT: f32 = 0.5 / 255.0 / 12.92;
+
+/// Whether any ray of a pixel's tree entered the box that holds every moving object.
+/// A pixel none of whose rays enter it cannot change while only those objects move.
+#[derive(Debug, Clone, Copy)]
+pub struct Motion {
+    /// The box, or `None` to track nothing.
+    pub bounds: Option<Aabb>,
+    /// Set once a segment entered the box.
+    pub touched: bool,
+}
+
+impl Motion {
+    /// Tracking against `bounds`.
+    #[must_use]
+    pub fn new(bounds: Option<Aabb>) -> Self {
+        Self {
+            bounds,
+            touched: false,
+        }
+    }
+
+    /// Notes the segment of `ray` from its start to `t_max`.
+    fn segment(&mut self, ray: &Ray, t_max: f32) {
+        if !self.touched
+            && let Some(b) = &self.bounds
+        {
+            self.touched = b.hit(ray, ray.dir.recip(), t_max);
+        }
+    }
+}
 
 /// The scene's brightest possible radiance per channel: every light at full
 /// diffuse and full specular, or the background.
@@ -51,18 +81,32 @@ fn base_color(m: &Material, point: Vec3) -> Vec3 {
 }
 
 /// Radiance (linear RGB) along `ray`; `depth` bounces so far, `weight` the product
-/// of reflective factors so far, `bound` from [`radiance_bound`].
+/// of reflective factors so far, `bound` from [`radiance_bound`]; `motion` notes
+/// whether the rays entered the moving objects' box.
 #[must_use]
-pub fn trace(p: &Prepared<'_>, ray: &Ray, depth: u32, weight: f32, bound: f32) -> Vec3 {
+pub fn trace(
+    p: &Prepared<'_>,
+    ray: &Ray,
+    depth: u32,
+    weight: f32,
+    bound: f32,
+    motion: &mut Motion,
+) -> Vec3 {
     let hit = p.closest(ray, f32::INFINITY);
-    shade(p, ray, hit, depth, weight, bound)
+    shade(p, ray, hit, depth, weight, bound, motion)
 }
 
 /// [`trace`] for a primary ray whose possible hits are `candidates` (its tile's).
 #[must_use]
-pub fn trace_primary(p: &Prepared<'_>, ray: &Ray, candidates: &[usize], bound: f32) -> Vec3 {
+pub fn trace_primary(
+    p: &Prepared<'_>,
+    ray: &Ray,
+    candidates: &[usize],
+    bound: f32,
+    motion: &mut Motion,
+) -> Vec3 {
     let hit = p.closest_among(ray, f32::INFINITY, candidates);
-    shade(p, ray, hit, 0, 1.0, bound)
+    shade(p, ray, hit, 0, 1.0, bound, motion)
 }
 
 /// The radiance of `hit` (or the background for none) seen along `ray`.
@@ -73,7 +117,9 @@ fn shade(
     depth: u32,
     weight: f32,
     bound: f32,
+    motion: &mut Motion,
 ) -> Vec3 {
+    motion.segment(ray, hit.map_or(f32::INFINITY, |h| h.t));
     let Some(hit) = hit else {
         return p.scene.background;
     };
@@ -100,15 +146,15 @@ fn shade(
             } => (-direction, f32::INFINITY, c),
         };
         let lambert = n.dot(to_light);
-        if lambert <= 0.0
-            || p.occluded(
-                &Ray {
-                    origin: start,
-                    dir: to_light,
-                },
-                dist,
-            )
-        {
+        if lambert <= 0.0 {
+            continue;
+        }
+        let shadow = Ray {
+            origin: start,
+            dir: to_light,
+        };
+        motion.segment(&shadow, dist);
+        if p.occluded(&shadow, dist) {
             continue;
         }
         color += base * light_color * lambert;
@@ -123,7 +169,14 @@ fn shade(
     let r = m.reflective;
     if r > 0.0 && depth < p.scene.max_depth && weight * r * bound >= BAILOUT {
         let dir = ray.dir - 2.0 * ray.dir.dot(n) * n;
-        let reflected = trace(p, &Ray { origin: start, dir }, depth + 1, weight * r, bound);
+        let reflected = trace(
+            p,
+            &Ray { origin: start, dir },
+            depth + 1,
+            weight * r,
+            bound,
+            motion,
+        );
         color = color * (1.0 - r) + reflected * r;
     }
     color
