@@ -374,6 +374,16 @@ fn srgb_bytes_round_the_standard_curve_to_nearest() {
     );
 }
 
+/// A default cradle at a small picture size with the given balls, lift and gap.
+fn small_cradle(size: (u32, u32), balls: usize, lift: usize, gap: f64) -> Config {
+    let mut config = Config::default();
+    (config.render.width, config.render.height) = size;
+    config.cradle.balls = balls;
+    config.cradle.gap = gap;
+    config.start.lift = lift;
+    config
+}
+
 #[test]
 fn tile_culling_leaves_every_byte_as_the_full_render_makes_it() {
     use newtons_cradle::trace::{RenderOptions, render_serial_with};
@@ -385,13 +395,7 @@ fn tile_culling_leaves_every_byte_as_the_full_render_makes_it() {
         (9, 3, 0.002, 0.8),
         (20, 3, 0.001, 1.3),
     ] {
-        let mut config = Config::default();
-        config.render.width = 300;
-        config.render.height = 150;
-        config.cradle.balls = balls;
-        config.cradle.gap = gap;
-        config.start.lift = lift;
-        let mut world = CradleWorld::new(&config);
+        let mut world = CradleWorld::new(&small_cradle((300, 150), balls, lift, gap));
         world.show_at(t);
         let mut s = world.scene().clone();
         let full = render_serial_with(&s, RenderOptions::FULL);
@@ -412,14 +416,7 @@ fn tile_culling_leaves_every_byte_as_the_full_render_makes_it() {
 fn incremental_frames_equal_full_renders_over_300_frames_of_a_swing() {
     use newtons_cradle::trace::{Incremental, RenderOptions, render_serial_with};
     for (balls, lift, gap) in [(5, 1, 0.0), (5, 2, 0.0), (20, 3, 0.0), (5, 1, 0.002)] {
-        let mut config = Config::default();
-        config.render.width = 160;
-        config.render.height = 80;
-        config.cradle.balls = balls;
-        config.cradle.gap = gap;
-        config.start.lift = lift;
-        config.start.running = true;
-        let mut world = CradleWorld::new(&config);
+        let mut world = CradleWorld::new(&small_cradle((160, 80), balls, lift, gap));
         let mut inc = Incremental::new();
         for n in 0..300 {
             world.show_at(f64::from(n) / 60.0);
