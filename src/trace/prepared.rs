@@ -83,21 +83,14 @@ impl<'a> Prepared<'a> {
         }
     }
 
-    /// Planes first, then bounded objects: the order every hit query considers
-    /// objects in, so that ties in distance always resolve the same way.
-    #[must_use]
-    pub fn query_order(&self) -> Vec<usize> {
+    /// Every object in the order hit queries consider them (planes first, then the
+    /// bounded ones), with its bounds (`None` for planes), so that ties in distance
+    /// always resolve the same way.
+    pub fn in_query_order(&self) -> impl Iterator<Item = (usize, Option<Aabb>)> + '_ {
         self.planes
             .iter()
-            .copied()
-            .chain(self.bounded.iter().map(|b| b.0))
-            .collect()
-    }
-
-    /// Bounds of every bounded object, in query order after the planes.
-    #[must_use]
-    pub fn bounds(&self) -> &[(usize, Aabb)] {
-        &self.bounded
+            .map(|&i| (i, None))
+            .chain(self.bounded.iter().map(|&(i, b)| (i, Some(b))))
     }
 
     /// The nearest hit before `t_max` among `candidates` (indices in query order),

@@ -96,7 +96,8 @@ struct Frame<'a> {
 }
 
 impl<'a> Frame<'a> {
-    fn new(scene: &'a Scene, options: RenderOptions) -> Self {
+    /// `track`: note which pixels' rays enter the motion box (incremental frames only).
+    fn new(scene: &'a Scene, options: RenderOptions, track: bool) -> Self {
         let prepared = Prepared::new(scene);
         let bound = radiance_bound(&prepared);
         let camera = CameraRays::new(&scene.camera, scene.size.0, scene.size.1);
@@ -109,7 +110,10 @@ impl<'a> Frame<'a> {
             prepared,
             bound,
             width: scene.size.0,
-            motion: scene.motion_bounds.map(|(min, max)| Aabb { min, max }),
+            motion: scene
+                .motion_bounds
+                .filter(|_| track)
+                .map(|(min, max)| Aabb { min, max }),
         }
     }
 
@@ -176,7 +180,7 @@ pub fn render_serial(scene: &Scene) -> Image {
 /// `RenderOptions::FULL` is the reference renderer.
 #[must_use]
 pub fn render_serial_with(scene: &Scene, options: RenderOptions) -> Image {
-    let frame = Frame::new(scene, options);
+    let frame = Frame::new(scene, options, false);
     let mut img = blank(scene);
     let stride = img.width as usize * 4;
     for (y, row) in img.rgba.chunks_exact_mut(stride).enumerate() {
@@ -188,7 +192,7 @@ pub fn render_serial_with(scene: &Scene, options: RenderOptions) -> Image {
 /// Rows in parallel on the current rayon pool; byte-identical to [`render_serial`].
 #[must_use]
 pub fn render(scene: &Scene) -> Image {
-    let frame = Frame::new(scene, RenderOptions::FAST);
+    let frame = Frame::new(scene, RenderOptions::FAST, false);
     let mut img = blank(scene);
     let stride = img.width as usize * 4;
     img.rgba
@@ -237,7 +241,7 @@ impl Incremental {
     /// Renders `scene` on the current rayon pool and returns the picture.
     pub fn render(&mut self, scene: &Scene) -> &Image {
         let key = static_part(scene);
-        let frame = Frame::new(scene, RenderOptions::FAST);
+        let frame = Frame::new(scene, RenderOptions::FAST, true);
         let reuse = scene.motion_bounds.is_some()
             && self.image.is_some()
             && self.key.as_ref() == Some(&key);

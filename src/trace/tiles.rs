@@ -44,10 +44,8 @@ impl Tiles {
     pub fn new(p: &Prepared<'_>, cam: &CameraRays, width: u32, height: u32) -> Self {
         let across = width.div_ceil(TILE);
         let down = height.div_ceil(TILE);
-        let order = p.query_order();
         let mut lists = vec![Vec::new(); (across * down) as usize];
-        for &i in &order {
-            let bounds = p.bounds().iter().find(|b| b.0 == i).map(|b| b.1);
+        for (i, bounds) in p.in_query_order() {
             // Planes (no bounds) and boxes reaching behind the eye go everywhere.
             let (x0, y0, x1, y1) = match bounds.and_then(|b| screen_bounds(cam, b.min, b.max)) {
                 // One pixel of margin covers round-off in the projection and the
