@@ -163,3 +163,20 @@ fn unreadable_and_binary_files_are_errors_not_panics() {
     ));
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn hertz_contact_is_accepted_and_elastic_only() {
+    let ok = parse("(contact: (model: hertz))", "hertz.ron").expect("hertz is valid");
+    let k = ok.cradle_params().hertz.expect("hertz stiffness set");
+    assert!(k > 0.0 && k.is_finite());
+    assert!(Config::default().cradle_params().hertz.is_none());
+    let src = "(\n  contact: (\n    model: hertz,\n    restitution: 0.5,\n  ),\n)\n";
+    let msg = parse(src, "bad.ron")
+        .expect_err("inelastic hertz")
+        .to_string();
+    assert!(msg.starts_with("bad.ron:4:5: "), "{msg}");
+    assert!(
+        msg.contains("contact.restitution") && msg.contains("hertz"),
+        "{msg}"
+    );
+}

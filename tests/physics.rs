@@ -13,6 +13,7 @@ fn params(balls: usize, gap: f64, restitution: f64) -> CradleParams {
         gap,
         gravity: 9.81,
         restitution,
+        hertz: None,
     }
 }
 

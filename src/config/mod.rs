@@ -361,6 +361,13 @@ impl Config {
             gap: self.cradle.gap,
             gravity: self.cradle.gravity,
             restitution: self.contact.restitution,
+            hertz: (self.contact.model == ContactModel::Hertz).then(|| {
+                crate::physics::hertz::stiffness(
+                    self.contact.youngs_modulus,
+                    self.contact.poisson_ratio,
+                    self.cradle.radius,
+                )
+            }),
         }
     }
 

@@ -158,11 +158,11 @@ impl Config {
         );
 
         let ct = &self.contact;
-        if ct.model == ContactModel::Hertz {
+        if ct.model == ContactModel::Hertz && ct.restitution != 1.0 {
             c.fail(
-                "contact.model",
-                "hertz",
-                "ideal (Hertz contact is planned but not built yet)",
+                "contact.restitution",
+                ct.restitution,
+                "1 with contact.model hertz (Hertz contact is elastic); 0..=1 with ideal",
             );
         }
         c.num(

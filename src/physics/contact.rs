@@ -31,6 +31,15 @@ fn normal_and_levers(p: &CradleParams, theta_a: f64, theta_b: f64) -> ((f64, f64
     (n, lever(sa, ca), lever(sb, cb))
 }
 
+/// The levers `J = dc/dtheta . n` (m/rad) of balls `a` and `b = a + 1` along
+/// their contact normal: a force `F` pushing them apart gives torques `-F J_a` and
+/// `F J_b`.
+#[must_use]
+pub fn levers(p: &CradleParams, theta_a: f64, theta_b: f64) -> (f64, f64) {
+    let (_, ja, jb) = normal_and_levers(p, theta_a, theta_b);
+    (ja, jb)
+}
+
 /// Normal speed of `b` relative to `a` (m/s): negative while they approach.
 #[must_use]
 pub fn closing_speed(p: &CradleParams, a: (f64, f64), b: (f64, f64)) -> f64 {

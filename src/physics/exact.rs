@@ -10,10 +10,13 @@
 //!    gap has a minimum below zero, has an impact; the earliest one is refined to
 //!    ~1e-14 s.
 //! 3. The impact and the contacts it sets off are resolved ([`contact::resolve`]);
-//!    the balls it changed get new flights.
+//!    the balls it changed get new flights. With Hertz contact the impact starts a
+//!    contact phase instead ([`hertz::run_phase`]), integrated to the moment the
+//!    balls come apart; every ball then gets a new flight.
 
 use super::contact::{self, Resolution};
 use super::flight::Flight;
+use super::hertz::{self, PhaseEnd};
 use super::params::CradleParams;
 use super::roots::{falling_root, rising_root};
 
@@ -54,6 +57,18 @@ pub struct ExactEngine {
     /// The state at t = 0, returned as given (the closed form reproduces it to
     /// round-off only).
     start: (Vec<f64>, Vec<f64>),
+    /// The latest Hertz contact phase (or segment of one), boxed: most engines
+    /// never have one.
+    phase: Option<Box<Phase>>,
+}
+
+/// A Hertz contact phase: where it started and how it ended.
+#[derive(Debug, Clone)]
+struct Phase {
+    t0: f64,
+    theta: Vec<f64>,
+    omega: Vec<f64>,
+    end: PhaseEnd,
 }
 
 impl ExactEngine {
@@ -79,10 +94,23 @@ impl ExactEngine {
             collisions: 0,
             events: 0,
             start: (theta.to_vec(), omega.to_vec()),
+            phase: None,
         };
         // Balls that start touching and approaching (none in a lifted start) are
         // resolved before anything flies.
         let (mut th, mut om) = engine.state_now(0.0);
+        if params.hertz.is_some() {
+            let starts = (0..th.len().saturating_sub(1)).any(|a| {
+                contact::gap_fn(&params, th[a], th[a + 1]) <= 0.0
+                    && contact::closing_speed(&params, (th[a], om[a]), (th[a + 1], om[a + 1])) < 0.0
+            });
+            if starts {
+                engine.run_segment(0.0, th, om);
+            } else {
+                engine.refly(&th, &om, &vec![false; om.len()]);
+            }
+            return engine;
+        }
         let mut changed = vec![false; th.len()];
         for a in 0..th.len().saturating_sub(1) {
             let touching = contact::gap_fn(&params, th[a], th[a + 1]) <= 0.0;
@@ -214,9 +242,40 @@ impl ExactEngine {
         None
     }
 
+    /// Runs one segment of a Hertz contact phase from `(theta, omega)` at `t0`; if the
+    /// balls came apart, every ball flies on from its end.
+    fn run_segment(&mut self, t0: f64, theta: Vec<f64>, omega: Vec<f64>) {
+        let k = self.params.hertz.unwrap_or(0.0);
+        let end = hertz::run_phase(&self.params, k, t0, &theta, &omega, f64::INFINITY);
+        self.collisions += end.contacts;
+        if end.separated {
+            self.t_event = end.t;
+            let all = vec![true; end.theta.len()];
+            self.refly(&end.theta, &end.omega, &all);
+        }
+        self.phase = Some(Box::new(Phase {
+            t0,
+            theta,
+            omega,
+            end,
+        }));
+    }
+
     /// Handles every event up to time `t`.
     pub fn advance_to(&mut self, t: f64) {
-        while !self.active.is_empty() {
+        loop {
+            if let Some(ph) = self.phase.as_ref().filter(|ph| !ph.end.separated) {
+                // A contact still going on: its next segment, when asked for.
+                if ph.end.t >= t {
+                    return;
+                }
+                let (t0, th, om) = (ph.end.t, ph.end.theta.clone(), ph.end.omega.clone());
+                self.run_segment(t0, th, om);
+                continue;
+            }
+            if self.active.is_empty() {
+                return;
+            }
             let w0 = self.t_event + self.scanned as f64 * self.window;
             if w0 >= t {
                 return;
@@ -240,6 +299,11 @@ impl ExactEngine {
     fn apply(&mut self, te: f64, a: usize) {
         let (mut th, mut om) = self.state_now(te);
         tracing::trace!(te, a, "impact");
+        if self.params.hertz.is_some() {
+            self.events += 1;
+            self.run_segment(te, th, om);
+            return;
+        }
         let out = contact::resolve(&self.params, &self.resolution, &mut th, &mut om, a);
         self.collisions += out.impacts;
         self.events += 1;
@@ -264,6 +328,15 @@ impl ExactEngine {
             return self.start.clone();
         }
         self.advance_to(t);
+        if let Some(ph) = self.phase.as_ref().filter(|ph| t >= ph.t0 && t < ph.end.t) {
+            // Inside a contact: the phase again from its start, cut at t.
+            let k = self.params.hertz.unwrap_or(0.0);
+            let cut = hertz::run_phase(&self.params, k, ph.t0, &ph.theta, &ph.omega, t);
+            return (cut.theta, cut.omega);
+        }
+        if let Some(ph) = self.phase.as_ref().filter(|ph| !ph.end.separated) {
+            return (ph.end.theta.clone(), ph.end.omega.clone());
+        }
         self.state_now(t)
     }
 

@@ -11,6 +11,7 @@ pub mod cradle;
 pub mod elliptic;
 pub mod exact;
 pub mod flight;
+pub mod hertz;
 pub mod params;
 pub mod roots;
 pub mod stepped;

@@ -65,6 +65,9 @@ pub struct CradleParams {
     pub gravity: f64,
     /// Coefficient of restitution of ideal impacts, 0..=1.
     pub restitution: f64,
+    /// Hertz contact stiffness `k` (N/m^1.5) of soft balls, or `None` for ideal
+    /// impacts ([`super::hertz`]).
+    pub hertz: Option<f64>,
 }
 
 impl CradleParams {
@@ -96,14 +99,24 @@ impl CradleParams {
         0.5 * self.inertia() * omega * omega + 2.0 * self.mass * self.gravity * self.length * s * s
     }
 
-    /// Total energy of the cradle (J).
+    /// Total energy of the cradle (J): the balls' energies plus, with Hertz contact,
+    /// the elastic energy `2/5 k delta^2.5` of every overlapping pair.
     #[must_use]
     pub fn energy(&self, theta: &[f64], omega: &[f64]) -> f64 {
-        theta
+        let balls: f64 = theta
             .iter()
             .zip(omega)
             .map(|(&t, &w)| self.ball_energy(t, w))
-            .sum()
+            .sum();
+        let Some(k) = self.hertz else {
+            return balls;
+        };
+        let elastic: f64 = theta
+            .windows(2)
+            .map(|w| super::hertz::overlap(self, w[0], w[1]).max(0.0))
+            .map(|d| 0.4 * k * d * d * d.sqrt())
+            .sum();
+        balls + elastic
     }
 
     /// Centre of ball `i` in the swing plane, relative to ball 0's pivot (m):

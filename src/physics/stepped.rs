@@ -8,6 +8,7 @@
 //! the state at a time does not depend on how often it is sampled.
 
 use super::contact::{self, Resolution};
+use super::hertz;
 use super::params::{CradleParams, Integrator};
 
 /// Bisection steps locating an impact inside a step: 2^-52 of a step.
@@ -102,9 +103,36 @@ impl SteppedEngine {
             ) < 0.0
     }
 
+    /// With Hertz contact: runs the contact phase from `(theta, omega)` for at most
+    /// `h` (s). Returns the time it took (all of `h` if the balls are still in
+    /// contact) and the contacts in it.
+    fn hertz_phase(&self, theta: &mut Vec<f64>, omega: &mut Vec<f64>, h: f64) -> (f64, u64) {
+        let k = self.params.hertz.unwrap_or(0.0);
+        let end = hertz::run_phase(&self.params, k, 0.0, theta, omega, h);
+        *theta = end.theta;
+        *omega = end.omega;
+        (if end.separated { end.t } else { h }, end.contacts)
+    }
+
+    /// True when some pair overlaps (with Hertz contact the phase goes on).
+    fn overlapping(&self, theta: &[f64]) -> bool {
+        theta
+            .windows(2)
+            .any(|w| contact::gap_fn(&self.params, w[0], w[1]) < 0.0)
+    }
+
     /// Advances `(theta, omega)` by `h`, resolving impacts inside; returns impacts.
     fn advance(&self, theta: &mut Vec<f64>, omega: &mut Vec<f64>, mut h: f64) -> u64 {
         let mut impacts = 0;
+        if self.params.hertz.is_some() && self.overlapping(theta) {
+            // A contact carried over from the last step.
+            let (took, n) = self.hertz_phase(theta, omega, h);
+            impacts += n;
+            h -= took;
+            if h <= 0.0 {
+                return impacts;
+            }
+        }
         // Each pass handles one impact; the bound only guards against a stuck state.
         for _ in 0..64 * theta.len() + 16 {
             let (t1, w1) = self.step_all(theta, omega, h);
@@ -131,6 +159,17 @@ impl SteppedEngine {
                 }
             }
             let (mut tc, mut wc) = self.step_all(theta, omega, hi * h);
+            if self.params.hertz.is_some() {
+                let (took, n) = self.hertz_phase(&mut tc, &mut wc, h * (1.0 - hi));
+                impacts += n;
+                *theta = tc;
+                *omega = wc;
+                h = h * (1.0 - hi) - took;
+                if h <= 0.0 {
+                    return impacts;
+                }
+                continue;
+            }
             impacts +=
                 contact::resolve(&self.params, &self.resolution, &mut tc, &mut wc, first).impacts;
             *theta = tc;
