@@ -67,6 +67,68 @@ pub struct RenderArgs {
 pub enum BenchCommand {
     /// Milliseconds per frame of a swinging cradle for 1..=all threads.
     Render(BenchRenderArgs),
+    /// Work-precision: each integrator's angle error against CPU time.
+    Physics(BenchPhysicsArgs),
+    /// The stability stress suite, longer than `cargo test` runs it.
+    Stress(BenchStressArgs),
+}
+
+/// `bench stress`' flags.
+#[derive(Debug, Args)]
+pub struct BenchStressArgs {
+    /// JSON Lines instead of a table.
+    #[arg(long)]
+    pub json: bool,
+    /// Run every scenario this many times longer than the test suite does, 0.01..=1000.
+    #[arg(
+        long,
+        default_value_t = 10.0,
+        allow_negative_numbers = true,
+        value_name = "X"
+    )]
+    pub scale: f64,
+}
+
+/// Checks `bench stress`' flags.
+///
+/// # Errors
+/// A flag out of range.
+pub fn bench_stress_scale(a: &BenchStressArgs) -> Result<f64, InputError> {
+    if a.scale.is_finite() && (0.01..=1000.0).contains(&a.scale) {
+        Ok(a.scale)
+    } else {
+        Err(InputError::Flag(format!(
+            "--scale {}: not allowed; allowed: 0.01..=1000",
+            a.scale
+        )))
+    }
+}
+
+/// `bench physics`'s flags.
+#[derive(Debug, Args)]
+pub struct BenchPhysicsArgs {
+    /// JSON Lines instead of a table.
+    #[arg(long)]
+    pub json: bool,
+    /// Also draw the work-precision diagram (log error against log CPU time) here.
+    #[arg(long, value_name = "FILE.svg")]
+    pub plot: Option<PathBuf>,
+    /// Simulated seconds per run, 0.1..=3600.
+    #[arg(
+        long,
+        default_value_t = 60.0,
+        allow_negative_numbers = true,
+        value_name = "S"
+    )]
+    pub duration: f64,
+    /// Smallest step of the sweep (s), 1e-7..=1e-2 (the sweep runs from 1e-2 down).
+    #[arg(
+        long,
+        default_value_t = 1e-5,
+        allow_negative_numbers = true,
+        value_name = "S"
+    )]
+    pub min_dt: f64,
 }
 
 /// `bench render`'s flags.
@@ -365,6 +427,35 @@ pub fn render_output(a: &RenderArgs) -> Result<crate::headless::Output, InputErr
             "say where to write: --out FILE.png, --frames N --out DIR/, or --gif FILE.gif".into(),
         )),
     }
+}
+
+/// Checks `bench physics`' flags; returns the steps of the sweep.
+///
+/// # Errors
+/// A flag out of range.
+pub fn bench_physics_dts(a: &BenchPhysicsArgs) -> Result<Vec<f64>, InputError> {
+    if !(a.duration.is_finite() && (0.1..=3600.0).contains(&a.duration)) {
+        return Err(InputError::Flag(format!(
+            "--duration {}: not allowed; allowed: 0.1..=3600 (s)",
+            a.duration
+        )));
+    }
+    if !(a.min_dt.is_finite() && (1e-7..=1e-2).contains(&a.min_dt)) {
+        return Err(InputError::Flag(format!(
+            "--min-dt {}: not allowed; allowed: 1e-7..=1e-2 (s)",
+            a.min_dt
+        )));
+    }
+    // Three steps per decade from 1e-2 down to min_dt.
+    let mut dts = Vec::new();
+    for i in 0.. {
+        let dt = 1e-2 * 10f64.powf(-f64::from(i) / 3.0);
+        if dt < a.min_dt * (1.0 - 1e-9) {
+            break;
+        }
+        dts.push(dt);
+    }
+    Ok(dts)
 }
 
 /// Checks `bench render`'s flags.

@@ -79,6 +79,14 @@ fn run(cli: &Cli) -> Result<(), Failure> {
             cli::bench_frames(args)?;
             None
         }
+        Some(Command::Bench(BenchCommand::Physics(args))) => {
+            cli::bench_physics_dts(args)?;
+            None
+        }
+        Some(Command::Bench(BenchCommand::Stress(args))) => {
+            cli::bench_stress_scale(args)?;
+            None
+        }
         _ => None,
     };
     let (config, source) = cli.common.load()?;
@@ -144,6 +152,128 @@ fn run(cli: &Cli) -> Result<(), Failure> {
                 let _ = writeln!(out, "{line}");
             })?;
         }
+        Some(Command::Bench(BenchCommand::Physics(args))) => {
+            let dts = cli::bench_physics_dts(args)?;
+            bench_physics(&config, cli.common.angle, args, dts)?;
+        }
+        Some(Command::Bench(BenchCommand::Stress(args))) => {
+            bench_stress(cli::bench_stress_scale(args)?, args.json)?;
+        }
     }
     Ok(())
+}
+
+/// `bench physics`: runs the sweep, prints rows as they come, then the observed
+/// orders, and draws the plot.
+fn bench_physics(
+    config: &newtons_cradle::config::Config,
+    angle: Option<f64>,
+    args: &cli::BenchPhysicsArgs,
+    dts: Vec<f64>,
+) -> Result<(), Failure> {
+    use newtons_cradle::bench::physics::{self, Plan};
+    use newtons_cradle::physics::Integrator;
+    let plan = Plan {
+        params: config.cradle_params(),
+        angles_deg: angle.map_or(vec![30.0, 170.0], |a| vec![a]),
+        duration: args.duration,
+        dts,
+        sample_every: 0.01,
+    };
+    let mut out = io::stdout().lock();
+    if !args.json {
+        writeln!(
+            out,
+            "5 balls, 1 lifted, {} s simulated; error: max angle error (rad) against the closed form",
+            plan.duration
+        )?;
+        writeln!(out, "angle  integrator  dt (s)     error (rad)  CPU (s)")?;
+    }
+    let total = plan.runs();
+    let mut done = 0;
+    let points = physics::run(&plan, |pt| {
+        done += 1;
+        let line = if args.json {
+            pt.json()
+        } else {
+            format!(
+                "{:>5}  {:<10}  {:<9}  {:>11.3e}  {:>9.3e}",
+                pt.angle_deg,
+                pt.integrator.name(),
+                pt.dt.map_or("-".into(), |d| format!("{d:.2e}")),
+                pt.error,
+                pt.cpu_seconds
+            )
+        };
+        let _ = writeln!(out, "{line}");
+        tracing::debug!("bench physics: {done}/{total} runs");
+    });
+    if !args.json {
+        for &a in &plan.angles_deg {
+            writeln!(
+                out,
+                "observed order at {a} deg (between consecutive steps, finest last):"
+            )?;
+            for m in &Integrator::ALL[1..] {
+                let o: Vec<String> = physics::orders(&points, *m, a)
+                    .iter()
+                    .map(|(_, o)| format!("{o:.2}"))
+                    .collect();
+                writeln!(out, "  {:<9} {}", m.name(), o.join(" "))?;
+            }
+        }
+    }
+    if let Some(path) = &args.plot {
+        physics::plot(&points, &plan, path)?;
+        tracing::info!("wrote {}", path.display());
+    }
+    Ok(())
+}
+
+/// `bench stress`: every scenario of the suite, `scale` times longer; exit 1 when
+/// one fails its checks.
+fn bench_stress(scale: f64, json: bool) -> Result<(), Failure> {
+    use newtons_cradle::bench::stress;
+    let mut out = io::stdout().lock();
+    if !json {
+        writeln!(
+            out,
+            "stress suite at {scale}x the test's durations (exact engine)"
+        )?;
+        writeln!(
+            out,
+            "{:<36} {:>8} {:>9} {:>10} {:>10} {:>9} {:>7}",
+            "scenario", "sim s", "impacts", "drift", "overlap m", "angle/max", "CPU s"
+        )?;
+    }
+    let mut failed = Vec::new();
+    for s in stress::scenarios(scale) {
+        let r = stress::run(&s);
+        if json {
+            writeln!(out, "{}", r.json())?;
+        } else {
+            writeln!(
+                out,
+                "{:<36} {:>8.0} {:>9} {:>10.2e} {:>10.2e} {:>9.6} {:>7.2}",
+                r.name,
+                r.duration,
+                r.impacts,
+                r.energy_drift,
+                r.max_overlap.max(0.0),
+                r.max_angle / r.angle_bound,
+                r.cpu_seconds
+            )?;
+        }
+        for f in r.failures(&s) {
+            failed.push(format!("{}: {f}", s.name));
+        }
+    }
+    if failed.is_empty() {
+        Ok(())
+    } else {
+        Err(Failure::Other(anyhow::anyhow!(
+            "stress suite failed:\n{}",
+            failed.join("\n")
+        )))
+    }
 }

@@ -2,6 +2,7 @@
 //! each thread count from 1 to every core, the course project's experiment done
 //! with medians.
 
+use super::median;
 use crate::config::Config;
 use crate::scene::{Control, CradleWorld};
 use crate::trace;
@@ -32,18 +33,6 @@ impl Row {
         json!({"threads": self.threads, "mode": self.mode, "width": self.width, "height": self.height,
                "ms_median": self.ms_median, "frames": self.frames})
         .to_string()
-    }
-}
-
-/// Median of a non-empty list.
-#[must_use]
-pub fn median(mut xs: Vec<f64>) -> f64 {
-    xs.sort_by(f64::total_cmp);
-    let n = xs.len();
-    if n % 2 == 1 {
-        xs[n / 2]
-    } else {
-        0.5 * (xs[n / 2 - 1] + xs[n / 2])
     }
 }
 

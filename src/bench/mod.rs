@@ -1,0 +1,39 @@
+//! The `bench` subcommands: what the program costs and how accurate it is.
+//! - [`render`]: milliseconds per frame over thread counts, full and incremental.
+//! - [`physics`]: the work-precision benchmark of the integrators.
+//! - [`stress`]: the stability stress suite, longer runs of `tests/stress.rs`.
+//! - [`plot`]: SVG line plots (plotters) for the benchmarks' `--plot`.
+
+pub mod physics;
+pub mod plot;
+pub mod render;
+pub mod stress;
+
+pub use render::{Row, bench_render};
+
+/// Median of a non-empty list.
+#[must_use]
+pub fn median(mut xs: Vec<f64>) -> f64 {
+    xs.sort_by(f64::total_cmp);
+    let n = xs.len();
+    if n % 2 == 1 {
+        xs[n / 2]
+    } else {
+        0.5 * (xs[n / 2 - 1] + xs[n / 2])
+    }
+}
+
+/// CPU seconds this thread has used (wall seconds where the platform has no
+/// thread clock).
+#[must_use]
+pub fn thread_cpu_seconds() -> f64 {
+    use std::sync::OnceLock;
+    static START: OnceLock<std::time::Instant> = OnceLock::new();
+    match cpu_time::ThreadTime::try_now() {
+        Ok(t) => t.as_duration().as_secs_f64(),
+        Err(_) => START
+            .get_or_init(std::time::Instant::now)
+            .elapsed()
+            .as_secs_f64(),
+    }
+}

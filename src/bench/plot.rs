@@ -1,0 +1,107 @@
+//! Log-log line plots written as SVG with plotters: the benchmarks' `--plot`.
+
+use plotters::prelude::*;
+use std::path::Path;
+
+/// One line of a panel.
+#[derive(Debug, Clone)]
+pub struct Series {
+    /// Legend text.
+    pub name: String,
+    /// `(x, y)` points, both > 0 (drawn in order).
+    pub points: Vec<(f64, f64)>,
+}
+
+/// One chart of the figure.
+#[derive(Debug, Clone)]
+pub struct Panel {
+    /// Caption above the chart.
+    pub title: String,
+    /// The lines.
+    pub series: Vec<Series>,
+}
+
+/// Axis labels shared by every panel.
+#[derive(Debug, Clone, Copy)]
+pub struct Axes<'a> {
+    /// Label of the horizontal axis.
+    pub x: &'a str,
+    /// Label of the vertical axis.
+    pub y: &'a str,
+}
+
+/// The range of the positive, finite values in `vals`, widened by a factor 1.5 each
+/// way (a factor 10 when there is one value).
+fn log_range(vals: impl Iterator<Item = f64>) -> std::ops::Range<f64> {
+    let (lo, hi) = vals
+        .filter(|v| v.is_finite() && *v > 0.0)
+        .fold((f64::INFINITY, 0.0_f64), |(lo, hi), v| {
+            (lo.min(v), hi.max(v))
+        });
+    if !lo.is_finite() {
+        return 0.1..10.0;
+    }
+    if lo == hi {
+        return lo / 10.0..hi * 10.0;
+    }
+    lo / 1.5..hi * 1.5
+}
+
+/// Writes panels side by side as one SVG, both axes logarithmic. Points that are not
+/// positive and finite (an error of exactly 0, a blown-up run) are left out.
+///
+/// # Errors
+/// When the file cannot be written.
+pub fn log_log_svg(path: &Path, panels: &[Panel], axes: Axes) -> anyhow::Result<()> {
+    let width = 620 * u32::try_from(panels.len().max(1))?;
+    let root = SVGBackend::new(path, (width, 520)).into_drawing_area();
+    let draw = || -> Result<(), Box<dyn std::error::Error + '_>> {
+        root.fill(&WHITE)?;
+        let areas = root.split_evenly((1, panels.len().max(1)));
+        for (area, panel) in areas.iter().zip(panels) {
+            let good =
+                |p: &&(f64, f64)| p.0.is_finite() && p.1.is_finite() && p.0 > 0.0 && p.1 > 0.0;
+            let all = || {
+                panel
+                    .series
+                    .iter()
+                    .flat_map(|s| s.points.iter().filter(good))
+            };
+            let xs = log_range(all().map(|p| p.0));
+            let ys = log_range(all().map(|p| p.1));
+            let mut chart = ChartBuilder::on(area)
+                .caption(&panel.title, ("sans-serif", 20))
+                .margin(12)
+                .x_label_area_size(44)
+                .y_label_area_size(64)
+                .build_cartesian_2d(xs.log_scale(), ys.log_scale())?;
+            chart
+                .configure_mesh()
+                .x_desc(axes.x)
+                .y_desc(axes.y)
+                .x_label_formatter(&|v| format!("{v:.0e}"))
+                .y_label_formatter(&|v| format!("{v:.0e}"))
+                .draw()?;
+            for (i, s) in panel.series.iter().enumerate() {
+                let colour = Palette99::pick(i).to_rgba();
+                let pts: Vec<(f64, f64)> = s.points.iter().filter(good).copied().collect();
+                chart
+                    .draw_series(LineSeries::new(pts.clone(), colour.stroke_width(2)))?
+                    .label(s.name.as_str())
+                    .legend(move |(x, y)| {
+                        PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2))
+                    });
+                chart.draw_series(pts.iter().map(|&p| Circle::new(p, 3, colour.filled())))?;
+            }
+            chart
+                .configure_series_labels()
+                .position(SeriesLabelPosition::UpperRight)
+                .background_style(WHITE.mix(0.85))
+                .border_style(BLACK)
+                .draw()?;
+        }
+        root.present()?;
+        Ok(())
+    };
+    draw().map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))
+}

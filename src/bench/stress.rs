@@ -1,0 +1,327 @@
+//! The stability stress suite: extreme cradles run for a long time, each checked for
+//! non-finite numbers, energy drift, overlap and angles beyond what the start's
+//! energy allows. `tests/stress.rs` runs it at scale 1 (seconds of CPU) in
+//! `cargo test`; `newtons-cradle bench stress --scale N` runs every scenario N
+//! times longer.
+
+use crate::config::Config;
+use crate::physics::{Cradle, CradleParams, Integrator, hertz};
+use serde_json::json;
+
+/// One stress case.
+#[derive(Debug, Clone)]
+pub struct Scenario {
+    /// Short name.
+    pub name: String,
+    /// The cradle.
+    pub params: CradleParams,
+    /// Balls lifted.
+    pub lift: usize,
+    /// Lift angle (degrees).
+    pub angle_deg: f64,
+    /// Simulated seconds.
+    pub duration: f64,
+    /// The state is checked every this many seconds.
+    pub sample_every: f64,
+    /// Largest energy change allowed, relative to the start: drift either way
+    /// with restitution 1, growth only below it.
+    pub energy_tol: f64,
+    /// Largest overlap of neighbours allowed (m); `None` for Hertz contact, where
+    /// overlap is the physics.
+    pub overlap_tol: Option<f64>,
+    /// Energy just after the first strike as a fraction of the start's, where the
+    /// model gives it in closed form.
+    pub first_strike_energy: Option<f64>,
+    /// The impacts must stop: restitution < 1 ends in finitely many events.
+    pub expect_rest: bool,
+}
+
+/// What one scenario did.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Report {
+    /// Scenario name.
+    pub name: String,
+    /// Simulated seconds.
+    pub duration: f64,
+    /// Impacts (Hertz: contacts).
+    pub impacts: u64,
+    /// Every number stayed finite.
+    pub finite: bool,
+    /// Largest `|E - E0| / E0` (restitution 1) or largest growth over the lowest
+    /// energy so far, relative to `E0` (restitution < 1).
+    pub energy_drift: f64,
+    /// Largest overlap of neighbours seen (m).
+    pub max_overlap: f64,
+    /// Largest `|theta|` seen (rad).
+    pub max_angle: f64,
+    /// The most any ball can swing with the start's energy (rad).
+    pub angle_bound: f64,
+    /// Energy just after the first strike over the start's.
+    pub first_strike_energy: f64,
+    /// Impacts in the last half of the run (0 once at rest).
+    pub late_impacts: u64,
+    /// CPU seconds.
+    pub cpu_seconds: f64,
+}
+
+impl Report {
+    /// The row as JSON.
+    #[must_use]
+    pub fn json(&self) -> String {
+        json!({"scenario": self.name, "duration": self.duration, "impacts": self.impacts,
+               "finite": self.finite, "energy_drift": self.energy_drift,
+               "max_overlap": self.max_overlap, "max_angle": self.max_angle,
+               "angle_bound": self.angle_bound, "first_strike_energy": self.first_strike_energy,
+               "late_impacts": self.late_impacts, "cpu_seconds": self.cpu_seconds})
+        .to_string()
+    }
+
+    /// What went wrong, checked against the scenario's limits; empty when it passed.
+    #[must_use]
+    pub fn failures(&self, s: &Scenario) -> Vec<String> {
+        let mut out = Vec::new();
+        if !self.finite {
+            out.push("a non-finite angle, speed or energy".to_owned());
+        }
+        if self.energy_drift.is_nan() || self.energy_drift > s.energy_tol {
+            out.push(format!(
+                "energy drift {:e} > {:e}",
+                self.energy_drift, s.energy_tol
+            ));
+        }
+        if let Some(tol) = s.overlap_tol
+            && (self.max_overlap.is_nan() || self.max_overlap > tol)
+        {
+            out.push(format!("overlap {:e} m > {tol:e} m", self.max_overlap));
+        }
+        // The bound's own round-off: 1e-12 rad.
+        if self.max_angle.is_nan() || self.max_angle > self.angle_bound + 1e-12 {
+            out.push(format!(
+                "angle {} rad beyond the energy's bound {} rad",
+                self.max_angle, self.angle_bound
+            ));
+        }
+        if let Some(want) = s.first_strike_energy {
+            // The first strike is a handful of exact impulses: 1e-12 of round-off.
+            if (self.first_strike_energy - want).abs() > 1e-12 {
+                out.push(format!(
+                    "first strike left {} of the energy, the model says {want}",
+                    self.first_strike_energy
+                ));
+            }
+        }
+        if s.expect_rest && self.late_impacts > 0 {
+            out.push(format!(
+                "{} impacts in the last half: never came to rest",
+                self.late_impacts
+            ));
+        }
+        out
+    }
+}
+
+/// The default asset's cradle (5 steel balls of 2 cm on 16 cm strings, ideal,
+/// e = 1) with `balls` balls.
+fn base(balls: usize) -> CradleParams {
+    CradleParams {
+        balls,
+        ..Config::default().cradle_params()
+    }
+}
+
+/// The suite, with every duration multiplied by `scale`.
+#[must_use]
+pub fn scenarios(scale: f64) -> Vec<Scenario> {
+    let case =
+        |name: &str, params: CradleParams, lift: usize, angle_deg: f64, duration: f64| Scenario {
+            name: name.to_owned(),
+            params,
+            lift,
+            angle_deg,
+            duration: duration * scale,
+            sample_every: 0.01,
+            energy_tol: 1e-10,
+            overlap_tol: Some(1e-12),
+            first_strike_energy: None,
+            expect_rest: false,
+        };
+    let inelastic = |e: f64, balls: usize, gap: f64| CradleParams {
+        restitution: e,
+        gap,
+        ..base(balls)
+    };
+    let mut out = vec![
+        // 20 balls into 180: 3600 impacts per strike, ~2.4 strikes a second:
+        // 1e6 impacts in 116 s.
+        Scenario {
+            sample_every: 0.05,
+            ..case(
+                "1e6 impacts: 200 balls, 20 lifted",
+                base(200),
+                20,
+                30.0,
+                120.0,
+            )
+        },
+        case("179.9 deg, N = 1", base(1), 1, 179.9, 20.0),
+        case("179.9 deg, N = 2, k = 1", base(2), 1, 179.9, 20.0),
+        case("179.9 deg, N = 200, k = 199", base(200), 199, 179.9, 5.0),
+        case(
+            "gaps of 1 mm: two-ball impacts",
+            CradleParams {
+                gap: 1e-3,
+                ..base(5)
+            },
+            2,
+            40.0,
+            60.0,
+        ),
+        Scenario {
+            first_strike_energy: Some(0.2),
+            expect_rest: true,
+            ..case("e = 0, 5 touching", inelastic(0.0, 5, 0.0), 1, 30.0, 20.0)
+        },
+        Scenario {
+            first_strike_energy: Some(0.625),
+            expect_rest: true,
+            ..case("e = 0.5, 2 touching", inelastic(0.5, 2, 0.0), 1, 30.0, 40.0)
+        },
+        // Apart balls swing at their own amplitudes, so their periods differ and
+        // they meet again: energy only decays here, with no rest to reach.
+        case(
+            "e = 0.5, 5 with gaps",
+            inelastic(0.5, 5, 2e-3),
+            2,
+            30.0,
+            60.0,
+        ),
+        case(
+            "tiny: r 0.2 mm, L 1 mm, g 1e-3",
+            CradleParams {
+                radius: 2e-4,
+                length: 1e-3,
+                mass: 1e-8,
+                gravity: 1e-3,
+                ..base(5)
+            },
+            2,
+            60.0,
+            200.0,
+        ),
+        case(
+            "huge: L 1 km, g 1e3",
+            CradleParams {
+                radius: 10.0,
+                length: 1000.0,
+                mass: 3e7,
+                gravity: 1e3,
+                ..base(5)
+            },
+            1,
+            60.0,
+            60.0,
+        ),
+        case(
+            "strong gravity: g 1e4",
+            CradleParams {
+                gravity: 1e4,
+                ..base(5)
+            },
+            1,
+            120.0,
+            2.0,
+        ),
+    ];
+    let steel = base(5);
+    out.push(Scenario {
+        // Each contact keeps energy to ~1e-12 (tests/hertz.rs); a few hundred
+        // contacts stay within 1e-9.
+        energy_tol: 1e-9,
+        overlap_tol: None,
+        ..case(
+            "hertz: 5 steel balls",
+            CradleParams {
+                hertz: Some(hertz::stiffness(2e11, 0.29, steel.radius)),
+                ..steel
+            },
+            1,
+            30.0,
+            10.0,
+        )
+    });
+    out
+}
+
+/// Runs one scenario with the exact engine.
+#[must_use]
+pub fn run(s: &Scenario) -> Report {
+    let start = super::thread_cpu_seconds();
+    let p = s.params;
+    let angle = s.angle_deg.to_radians();
+    let mut c = Cradle::new(p, Integrator::Exact, 1e-3, s.lift, angle);
+    let e0 = c.initial_energy();
+    // With all the energy in one ball: sin^2(A_max/2) = k sin^2(A/2).
+    let angle_bound = 2.0
+        * ((s.lift as f64).sqrt() * (0.5 * angle).sin())
+            .clamp(-1.0, 1.0)
+            .asin();
+    // The lifted balls reach the bottom a quarter period after release.
+    let quarter = crate::physics::period_ratio(angle) * std::f64::consts::FRAC_PI_2 / p.w0();
+    let mut report = Report {
+        name: s.name.clone(),
+        duration: s.duration,
+        impacts: 0,
+        finite: true,
+        energy_drift: 0.0,
+        max_overlap: f64::NEG_INFINITY,
+        max_angle: 0.0,
+        angle_bound,
+        first_strike_energy: f64::NAN,
+        late_impacts: 0,
+        cpu_seconds: 0.0,
+    };
+    let samples = (s.duration / s.sample_every).round() as u64;
+    let mut lowest = e0;
+    let mut at_half = None;
+    let mut check = |c: &mut Cradle, t: f64, report: &mut Report| {
+        let snap = c.snapshot(t);
+        let e = c.energy(&snap);
+        report.finite &=
+            e.is_finite() && snap.theta.iter().chain(&snap.omega).all(|v| v.is_finite());
+        let drift = if p.restitution == 1.0 {
+            (e - e0).abs() / e0
+        } else {
+            (e - lowest) / e0
+        };
+        report.energy_drift = report.energy_drift.max(drift);
+        lowest = lowest.min(e);
+        for (a, w) in snap.theta.windows(2).enumerate() {
+            let (x0, y0) = p.centre(a, w[0]);
+            let (x1, y1) = p.centre(a + 1, w[1]);
+            report.max_overlap = report
+                .max_overlap
+                .max(2.0 * p.radius - (x1 - x0).hypot(y1 - y0));
+        }
+        for th in &snap.theta {
+            report.max_angle = report.max_angle.max(th.abs());
+        }
+        report.impacts = snap.collisions;
+        e
+    };
+    for n in 0..=samples {
+        let t = n as f64 * s.sample_every;
+        // Just after the first strike (a thousandth of a period later).
+        let probe = quarter * 1.004;
+        if n > 0 && (n - 1) as f64 * s.sample_every < probe && probe <= t {
+            let e = check(&mut c, probe, &mut report);
+            report.first_strike_energy = e / e0;
+        }
+        check(&mut c, t, &mut report);
+        if n == samples / 2 {
+            at_half = Some(report.impacts);
+        }
+    }
+    report.late_impacts = report.impacts - at_half.unwrap_or(0);
+    report.cpu_seconds = super::thread_cpu_seconds() - start;
+    report
+}
