@@ -71,6 +71,27 @@ pub enum BenchCommand {
     Physics(BenchPhysicsArgs),
     /// The stability stress suite, longer than `cargo test` runs it.
     Stress(BenchStressArgs),
+    /// Picture error (RMSE, PSNR) against ms per frame, per anti-aliasing mode and depth.
+    RenderQuality(BenchQualityArgs),
+}
+
+/// `bench render-quality`'s flags.
+#[derive(Debug, Args)]
+pub struct BenchQualityArgs {
+    /// JSON Lines instead of a table.
+    #[arg(long)]
+    pub json: bool,
+    /// Also draw RMSE against ms per frame here.
+    #[arg(long, value_name = "FILE.svg")]
+    pub plot: Option<PathBuf>,
+    /// Frames timed per row (the median is reported), 1..=1000.
+    #[arg(
+        long,
+        default_value_t = 3,
+        allow_negative_numbers = true,
+        value_name = "N"
+    )]
+    pub frames: i64,
 }
 
 /// `bench stress`' flags.

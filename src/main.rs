@@ -87,6 +87,10 @@ fn run(cli: &Cli) -> Result<(), Failure> {
             cli::bench_stress_scale(args)?;
             None
         }
+        Some(Command::Bench(BenchCommand::RenderQuality(args))) => {
+            quality_frames(args)?;
+            None
+        }
         _ => None,
     };
     let (config, source) = cli.common.load()?;
@@ -158,6 +162,9 @@ fn run(cli: &Cli) -> Result<(), Failure> {
         }
         Some(Command::Bench(BenchCommand::Stress(args))) => {
             bench_stress(cli::bench_stress_scale(args)?, args.json)?;
+        }
+        Some(Command::Bench(BenchCommand::RenderQuality(args))) => {
+            bench_quality(&config, args)?;
         }
     }
     Ok(())
@@ -276,4 +283,64 @@ fn bench_stress(scale: f64, json: bool) -> Result<(), Failure> {
             failed.join("\n")
         )))
     }
+}
+
+/// `bench render-quality`'s `--frames`, checked.
+fn quality_frames(args: &cli::BenchQualityArgs) -> Result<u32, InputError> {
+    if (1..=1000).contains(&args.frames) {
+        Ok(args.frames as u32)
+    } else {
+        Err(InputError::Flag(format!(
+            "--frames {}: not allowed; allowed: 1..=1000",
+            args.frames
+        )))
+    }
+}
+
+/// `bench render-quality`: the table (or JSON Lines) and the plot.
+fn bench_quality(
+    config: &newtons_cradle::config::Config,
+    args: &cli::BenchQualityArgs,
+) -> Result<(), Failure> {
+    use newtons_cradle::bench::quality;
+    let frames = quality_frames(args)?;
+    let threads = config.render.threads;
+    let mut out = io::stdout().lock();
+    let title = format!(
+        "{}x{}, {} threads, t = 0.5 s",
+        config.render.width,
+        config.render.height,
+        if threads == 0 {
+            "all".to_owned()
+        } else {
+            threads.to_string()
+        }
+    );
+    if !args.json {
+        writeln!(
+            out,
+            "{title}; reference: 64 spp, depth 8; adaptive threshold {}",
+            config.render.adaptive_threshold
+        )?;
+        writeln!(
+            out,
+            "mode         depth  ms/frame    RMSE  PSNR dB  PSNR vs 16 spp"
+        )?;
+    }
+    let rows = quality::run(config, threads, frames, |r| {
+        let line = if args.json {
+            r.json()
+        } else {
+            format!(
+                "{:<11}  {:>5}  {:>8.1}  {:>6.3}  {:>7.2}  {:>14.2}",
+                r.mode, r.depth, r.ms_median, r.rmse, r.psnr, r.psnr_vs_16
+            )
+        };
+        let _ = writeln!(out, "{line}");
+    })?;
+    if let Some(path) = &args.plot {
+        quality::plot(&rows, path, &title)?;
+        tracing::info!("wrote {}", path.display());
+    }
+    Ok(())
 }

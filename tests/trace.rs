@@ -105,6 +105,7 @@ fn scene(objects: Vec<Object>, lights: Vec<Light>, size: (u32, u32)) -> Scene {
         size,
         max_depth: 3,
         samples: 1,
+        adaptive: None,
         motion_bounds: None,
     }
 }
@@ -309,38 +310,28 @@ fn parallel_render_equals_serial_byte_for_byte() {
 
 #[test]
 fn the_whole_cradle_is_in_view_at_the_default_camera() {
-    let config = Config::default();
-    let layout = newtons_cradle::scene::spawn::Layout::new(&config);
-    let c = &config.cradle;
-    let cam = &config.camera;
-    let eye = glam::DVec3::from(cam.position);
-    let fwd = (glam::DVec3::from(cam.look_at) - eye).normalize();
-    let right = fwd.cross(glam::DVec3::Y).normalize();
-    let up = right.cross(fwd);
-    let half_h = (cam.fov_deg.to_radians() / 2.0).tan();
-    let half_w = half_h * f64::from(config.render.width) / f64::from(config.render.height);
-    let (x, top, z) = (
-        layout.half_width + c.frame_radius,
-        c.pivot_height + c.frame_radius,
-        c.rail_spread + c.frame_radius,
-    );
-    for corner in [
-        [-x, 0.0, -z],
-        [x, 0.0, -z],
-        [-x, 0.0, z],
-        [x, 0.0, z],
-        [-x, top, -z],
-        [x, top, -z],
-        [-x, top, z],
-        [x, top, z],
-    ] {
-        let v = glam::DVec3::from(corner) - eye;
-        let depth = v.dot(fwd);
-        let (sx, sy) = (v.dot(right) / depth / half_w, v.dot(up) / depth / half_h);
-        assert!(
-            depth > 0.0 && sx.abs() < 1.0 && sy.abs() < 1.0,
-            "frame corner {corner:?} at ({sx:.3}, {sy:.3})"
-        );
+    use newtons_cradle::scene::spawn::{fitted_camera, frame_corners, view_coords};
+    // The default camera sees the default cradle as configured; with more balls
+    // `camera.fit` moves it back until the frame is in view again.
+    let default = Config::default();
+    assert_eq!(fitted_camera(&default), default.camera);
+    for balls in [5, 50, 200] {
+        let mut config = Config::default();
+        config.cradle.balls = balls;
+        let cam = fitted_camera(&config);
+        for corner in frame_corners(&config) {
+            let (sx, sy, depth) =
+                view_coords(&cam, config.render.width, config.render.height, corner);
+            assert!(
+                depth > 0.0 && sx.abs() < 1.0 && sy.abs() < 1.0,
+                "{balls} balls: frame corner {corner:?} at ({sx:.3}, {sy:.3})"
+            );
+        }
+        // Moved back along its line of sight only: the same view direction.
+        let dir = |c: &newtons_cradle::config::CameraConfig| {
+            (glam::DVec3::from(c.look_at) - glam::DVec3::from(c.position)).normalize()
+        };
+        assert!((dir(&cam) - dir(&default.camera)).length() < 1e-12);
     }
 }
 
@@ -461,4 +452,87 @@ fn incremental_renders_in_full_when_anything_static_changes() {
     let _ = inc.render(&s);
     let _ = inc.render(&s);
     assert!(inc.last_was_full(), "no motion box: nothing can be reused");
+}
+
+/// PSNR (dB) of `img` against `reference`, over the RGB bytes.
+fn psnr(img: &trace::Image, reference: &trace::Image) -> f64 {
+    let (mut sum, mut n) = (0.0, 0.0);
+    for (i, (a, b)) in img.rgba.iter().zip(&reference.rgba).enumerate() {
+        if i % 4 != 3 {
+            let d = f64::from(*a) - f64::from(*b);
+            sum += d * d;
+            n += 1.0;
+        }
+    }
+    10.0 * (255.0 * 255.0 / (sum / n)).log10()
+}
+
+#[test]
+fn adaptive_anti_aliasing_supersamples_exactly_the_edges() {
+    let mut s = cradle_scene(240, 120, 0.4);
+    s.samples = 8;
+    let uniform = trace::render_serial(&s);
+    s.samples = 1;
+    let single = trace::render_serial(&s);
+    s.samples = 8;
+    s.adaptive = Some(0.05);
+    let adaptive = trace::render_serial(&s);
+    // Edge pixels (in the one-sample picture) carry the 8-sample colour, the
+    // others the one-sample colour, byte for byte.
+    let (w, h) = (240usize, 120usize);
+    let px = |img: &trace::Image, x: usize, y: usize| {
+        img.rgba[(y * w + x) * 4..(y * w + x) * 4 + 3].to_vec()
+    };
+    let mut edges = 0;
+    for y in 0..h {
+        for x in 0..w {
+            let here = px(&single, x, y);
+            let near = [
+                (x.wrapping_sub(1), y),
+                (x + 1, y),
+                (x, y.wrapping_sub(1)),
+                (x, y + 1),
+            ];
+            let edge = near
+                .iter()
+                .filter(|(nx, ny)| *nx < w && *ny < h)
+                .any(|&(nx, ny)| {
+                    here.iter()
+                        .zip(px(&single, nx, ny))
+                        .any(|(a, b)| f32::from(a.abs_diff(b)) > 0.05 * 255.0)
+                });
+            let want = if edge { px(&uniform, x, y) } else { here };
+            assert_eq!(px(&adaptive, x, y), want, "pixel ({x}, {y}), edge {edge}");
+            edges += usize::from(edge);
+        }
+    }
+    // A cradle has edges, but they are a minority of the picture.
+    assert!(edges > 100 && edges < w * h / 2, "{edges} edge pixels");
+    // And it is closer to a 16-sample reference than one sample is.
+    s.adaptive = None;
+    s.samples = 16;
+    let reference = trace::render_serial(&s);
+    assert!(psnr(&adaptive, &reference) > psnr(&single, &reference) + 3.0);
+}
+
+#[test]
+fn adaptive_parallel_and_incremental_equal_serial() {
+    let config = {
+        let mut c = small_cradle((160, 80), 5, 1, 0.0);
+        c.render.samples = 4;
+        c.render.adaptive = true;
+        c
+    };
+    let mut world = CradleWorld::new(&config);
+    world.send(newtons_cradle::scene::Control::TogglePause);
+    let mut inc = trace::Incremental::new();
+    for threads in [1u32, 2, 3] {
+        let pool = trace::pool(threads as usize).unwrap();
+        for f in 0..4 {
+            world.show_at(0.3 + f64::from(f) / 30.0 + f64::from(threads));
+            let serial = trace::render_serial_with(world.scene(), trace::RenderOptions::FULL);
+            assert_eq!(pool.install(|| trace::render(world.scene())), serial);
+            assert_eq!(pool.install(|| inc.render(world.scene()).clone()), serial);
+        }
+    }
 }

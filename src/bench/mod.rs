@@ -1,11 +1,13 @@
 //! The `bench` subcommands: what the program costs and how accurate it is.
 //! - [`render`]: milliseconds per frame over thread counts, full and incremental.
 //! - [`physics`]: the work-precision benchmark of the integrators.
+//! - [`quality`]: picture error against render time (anti-aliasing, depth).
 //! - [`stress`]: the stability stress suite, longer runs of `tests/stress.rs`.
 //! - [`plot`]: SVG line plots (plotters) for the benchmarks' `--plot`.
 
 pub mod physics;
 pub mod plot;
+pub mod quality;
 pub mod render;
 pub mod stress;
 

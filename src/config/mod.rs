@@ -187,8 +187,15 @@ pub struct RenderConfig {
     pub height: u32,
     /// Reflection depth: mirror bounces after the primary hit, 0..=16. Default 3.
     pub max_depth: u32,
-    /// Samples per pixel, 1..=64. Default 1.
+    /// Samples per pixel, 1..=64. Default 1. With `adaptive`, only edge pixels
+    /// get them.
     pub samples: u32,
+    /// Adaptive anti-aliasing: one sample per pixel, then `samples` only where a
+    /// pixel differs from a neighbour by more than `adaptive_threshold`. Default false.
+    pub adaptive: bool,
+    /// Largest sRGB difference (0..=1, of any channel) between a pixel and its
+    /// 4-neighbours that adaptive anti-aliasing leaves alone. Default 0.05.
+    pub adaptive_threshold: f64,
     /// Tracing threads, 0..=256; 0 uses every core. Default 0.
     pub threads: usize,
     /// Colour of rays that hit nothing (linear RGB). Default a dim blue-grey.
@@ -202,6 +209,8 @@ impl Default for RenderConfig {
             height: 600,
             max_depth: 3,
             samples: 1,
+            adaptive: false,
+            adaptive_threshold: 0.05,
             threads: 0,
             background: [0.05, 0.06, 0.08],
         }
@@ -218,6 +227,10 @@ pub struct CameraConfig {
     pub look_at: Vec3,
     /// Vertical field of view (degrees), 1..=170. Default 31.
     pub fov_deg: f64,
+    /// Move the eye back along its line of sight, where needed, until the whole
+    /// frame is in view (a long row of balls). Default true; the default camera
+    /// already sees the default cradle, so it does not move.
+    pub fit: bool,
 }
 
 impl Default for CameraConfig {
@@ -226,6 +239,7 @@ impl Default for CameraConfig {
             position: [0.0, 0.36, 0.6],
             look_at: [0.0, 0.12, 0.0],
             fov_deg: 31.0,
+            fit: true,
         }
     }
 }

@@ -205,6 +205,12 @@ impl Config {
         if !(1..=64).contains(&r.samples) {
             c.fail("render.samples", r.samples, "1..=64");
         }
+        c.num(
+            "render.adaptive_threshold",
+            r.adaptive_threshold,
+            (0.0..=1.0).contains(&r.adaptive_threshold),
+            "0..=1 (sRGB difference)",
+        );
         if r.threads > 256 {
             c.fail("render.threads", r.threads, "0..=256 (0 = every core)");
         }

@@ -5,7 +5,7 @@ use super::components::{
     ActiveConfig, Ball, CameraRes, CradleState, FlatScene, Floor, Light, Material, Pendulum, Rod,
     Shape, SimClock, SimState, Strand, StrandOf, Transform,
 };
-use crate::config::{Config, MaterialConfig};
+use crate::config::{CameraConfig, Config, MaterialConfig};
 use crate::trace;
 use bevy_ecs::prelude::*;
 use glam::{DVec3, Vec3};
@@ -56,6 +56,77 @@ impl Layout {
     pub fn pivot(&self, i: usize) -> DVec3 {
         self.first_pivot + DVec3::X * (i as f64 * self.spacing)
     }
+}
+
+/// The frame's eight corners (posts, rails and feet, with their thickness).
+#[must_use]
+pub fn frame_corners(config: &Config) -> [DVec3; 8] {
+    let c = &config.cradle;
+    let layout = Layout::new(config);
+    let (x, top, z) = (
+        layout.half_width + c.frame_radius,
+        c.pivot_height + c.frame_radius,
+        c.rail_spread + c.frame_radius,
+    );
+    [
+        DVec3::new(-x, 0.0, -z),
+        DVec3::new(x, 0.0, -z),
+        DVec3::new(-x, 0.0, z),
+        DVec3::new(x, 0.0, z),
+        DVec3::new(-x, top, -z),
+        DVec3::new(x, top, -z),
+        DVec3::new(-x, top, z),
+        DVec3::new(x, top, z),
+    ]
+}
+
+/// Where `point` lands in the view of `cam` for a `width x height` picture, as
+/// `(x, y)` in -1..=1 across the picture, and its depth along the line of sight.
+#[must_use]
+pub fn view_coords(cam: &CameraConfig, width: u32, height: u32, point: DVec3) -> (f64, f64, f64) {
+    let eye = DVec3::from(cam.position);
+    let fwd = (DVec3::from(cam.look_at) - eye).normalize();
+    let right = fwd.cross(DVec3::Y).normalize();
+    let up = right.cross(fwd);
+    let half_h = (cam.fov_deg.to_radians() / 2.0).tan();
+    let half_w = half_h * f64::from(width) / f64::from(height);
+    let v = point - eye;
+    let depth = v.dot(fwd);
+    (
+        v.dot(right) / depth / half_w,
+        v.dot(up) / depth / half_h,
+        depth,
+    )
+}
+
+/// The camera of `config`, with `camera.fit` moved back along its line of sight
+/// until every corner of the frame is inside 95% of the view. A camera that sees
+/// the frame already, or looks straight down, is left as it is.
+#[must_use]
+pub fn fitted_camera(config: &Config) -> CameraConfig {
+    let mut cam = config.camera.clone();
+    let (w, h) = (config.render.width, config.render.height);
+    let corners = frame_corners(config);
+    let inside = |cam: &CameraConfig| {
+        corners.iter().all(|&p| {
+            let (x, y, depth) = view_coords(cam, w, h, p);
+            depth > 0.0 && x.abs() <= 0.95 && y.abs() <= 0.95
+        })
+    };
+    let look = DVec3::from(cam.look_at);
+    let back = DVec3::from(cam.position) - look;
+    if !cam.fit || inside(&cam) || back.normalize().cross(DVec3::Y).length() < 1e-6 {
+        return cam;
+    }
+    // 2% further each step: at most ~350 steps to 1000 times the distance.
+    for i in 1..=350 {
+        let eye = look + back * 1.02_f64.powi(i);
+        cam.position = eye.to_array();
+        if inside(&cam) {
+            break;
+        }
+    }
+    cam
 }
 
 /// Where a ball hangs at angle `theta`: centre and orientation.
@@ -109,7 +180,7 @@ fn insert_resources(world: &mut World, config: &Config) {
         SimState::Paused
     });
     world.insert_resource(ActiveConfig(config.clone()));
-    world.insert_resource(CameraRes(config.camera.clone()));
+    world.insert_resource(CameraRes(fitted_camera(config)));
     world.init_resource::<FlatScene>();
 }
 

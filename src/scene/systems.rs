@@ -214,5 +214,6 @@ pub fn extract(
     scene.size = (r.width, r.height);
     scene.max_depth = r.max_depth;
     scene.samples = r.samples;
+    scene.adaptive = r.adaptive.then_some(r.adaptive_threshold as f32);
     scene.motion_bounds = Some(motion_bounds(&config.0));
 }

@@ -92,7 +92,10 @@ struct Frame<'a> {
     offsets: Vec<(f32, f32)>,
     bound: f32,
     width: u32,
+    height: u32,
     motion: Option<Aabb>,
+    /// Adaptive anti-aliasing: the byte difference above which a pixel is an edge.
+    edge: Option<f32>,
 }
 
 impl<'a> Frame<'a> {
@@ -110,6 +113,11 @@ impl<'a> Frame<'a> {
             prepared,
             bound,
             width: scene.size.0,
+            height: scene.size.1,
+            edge: scene
+                .adaptive
+                .filter(|_| scene.samples > 1)
+                .map(|t| t * 255.0),
             motion: scene
                 .motion_bounds
                 .filter(|_| track)
@@ -117,12 +125,11 @@ impl<'a> Frame<'a> {
         }
     }
 
-    /// The linear colour of pixel `(x, y)`, and whether any of its rays entered the
-    /// moving objects' box.
-    fn pixel(&self, x: u32, y: u32) -> (Vec3, bool) {
+    /// The linear colour of pixel `(x, y)` from samples at `offsets`, and whether
+    /// any of its rays entered the moving objects' box.
+    fn pixel(&self, x: u32, y: u32, offsets: &[(f32, f32)]) -> (Vec3, bool) {
         let mut motion = Motion::new(self.motion);
-        let sum: Vec3 = self
-            .offsets
+        let sum: Vec3 = offsets
             .iter()
             .map(|&(dx, dy)| {
                 let ray = self.camera.ray(x as f32 + dx, y as f32 + dy);
@@ -134,13 +141,17 @@ impl<'a> Frame<'a> {
                 }
             })
             .sum();
-        (sum / self.offsets.len() as f32, motion.touched)
+        (sum / offsets.len() as f32, motion.touched)
+    }
+
+    fn put_with(&self, x: u32, y: u32, px: &mut [u8], offsets: &[(f32, f32)]) -> bool {
+        let (c, touched) = self.pixel(x, y, offsets);
+        px.copy_from_slice(&[srgb8(c.x), srgb8(c.y), srgb8(c.z), 255]);
+        touched
     }
 
     fn put(&self, x: u32, y: u32, px: &mut [u8]) -> bool {
-        let (c, touched) = self.pixel(x, y);
-        px.copy_from_slice(&[srgb8(c.x), srgb8(c.y), srgb8(c.z), 255]);
-        touched
+        self.put_with(x, y, px, &self.offsets)
     }
 
     /// Traces a whole row; returns the pixels whose rays entered the motion box.
@@ -149,6 +160,60 @@ impl<'a> Frame<'a> {
             .zip(out.chunks_exact_mut(4))
             .filter_map(|(x, px)| self.put(x, y, px).then_some(x))
             .collect()
+    }
+
+    /// Whether pixel `(x, y)` of a one-sample picture differs from a 4-neighbour
+    /// by more than `edge` in some channel.
+    fn is_edge(&self, base: &[u8], x: u32, y: u32, edge: f32) -> bool {
+        let at = |x: u32, y: u32| (y as usize * self.width as usize + x as usize) * 4;
+        let here = &base[at(x, y)..at(x, y) + 3];
+        let differs = |nx: u32, ny: u32| {
+            let there = &base[at(nx, ny)..at(nx, ny) + 3];
+            here.iter()
+                .zip(there)
+                .any(|(a, b)| f32::from(a.abs_diff(*b)) > edge)
+        };
+        (x > 0 && differs(x - 1, y))
+            || (x + 1 < self.width && differs(x + 1, y))
+            || (y > 0 && differs(x, y - 1))
+            || (y + 1 < self.height && differs(x, y + 1))
+    }
+
+    /// The whole picture, rows in parallel or one after another (the same bytes):
+    /// every pixel at every sample, or with adaptive anti-aliasing one centre
+    /// sample first and then every sample at the edges of that picture. Returns it
+    /// with, per row, the pixels whose rays entered the motion box.
+    fn image(&self, parallel: bool) -> (Image, Vec<Vec<u32>>) {
+        let mut img = Image {
+            width: self.width,
+            height: self.height,
+            rgba: vec![0; self.width as usize * self.height as usize * 4],
+        };
+        let Some(edge) = self.edge else {
+            let touched = for_rows(&mut img, parallel, |y, row| self.row(y, row));
+            return (img, touched);
+        };
+        let centre = [(0.5, 0.5)];
+        let mut touched: Vec<Vec<u32>> = for_rows(&mut img, parallel, |y, row| {
+            (0..self.width)
+                .zip(row.chunks_exact_mut(4))
+                .filter_map(|(x, px)| self.put_with(x, y, px, &centre).then_some(x))
+                .collect()
+        });
+        let base = img.rgba.clone();
+        let edges = for_rows(&mut img, parallel, |y, row| {
+            (0..self.width)
+                .zip(row.chunks_exact_mut(4))
+                .filter(|(x, _)| self.is_edge(&base, *x, y, edge))
+                .filter_map(|(x, px)| self.put(x, y, px).then_some(x))
+                .collect::<Vec<u32>>()
+        });
+        for (t, e) in touched.iter_mut().zip(edges) {
+            t.extend(e);
+            t.sort_unstable();
+            t.dedup();
+        }
+        (img, touched)
     }
 
     /// Traces only pixels `xs` of a row.
@@ -160,12 +225,26 @@ impl<'a> Frame<'a> {
     }
 }
 
-fn blank(scene: &Scene) -> Image {
-    let (width, height) = scene.size;
-    Image {
-        width,
-        height,
-        rgba: vec![0; width as usize * height as usize * 4],
+/// Runs `f(y, row)` over the rows of `img`, in parallel on the current rayon pool
+/// or serially, and collects what it returns per row.
+fn for_rows<R: Send>(
+    img: &mut Image,
+    parallel: bool,
+    f: impl Fn(u32, &mut [u8]) -> R + Sync,
+) -> Vec<R> {
+    let stride = img.width as usize * 4;
+    if parallel {
+        img.rgba
+            .par_chunks_exact_mut(stride)
+            .enumerate()
+            .map(|(y, row)| f(y as u32, row))
+            .collect()
+    } else {
+        img.rgba
+            .chunks_exact_mut(stride)
+            .enumerate()
+            .map(|(y, row)| f(y as u32, row))
+            .collect()
     }
 }
 
@@ -180,28 +259,13 @@ pub fn render_serial(scene: &Scene) -> Image {
 /// `RenderOptions::FULL` is the reference renderer.
 #[must_use]
 pub fn render_serial_with(scene: &Scene, options: RenderOptions) -> Image {
-    let frame = Frame::new(scene, options, false);
-    let mut img = blank(scene);
-    let stride = img.width as usize * 4;
-    for (y, row) in img.rgba.chunks_exact_mut(stride).enumerate() {
-        frame.row(y as u32, row);
-    }
-    img
+    Frame::new(scene, options, false).image(false).0
 }
 
 /// Rows in parallel on the current rayon pool; byte-identical to [`render_serial`].
 #[must_use]
 pub fn render(scene: &Scene) -> Image {
-    let frame = Frame::new(scene, RenderOptions::FAST, false);
-    let mut img = blank(scene);
-    let stride = img.width as usize * 4;
-    img.rgba
-        .par_chunks_exact_mut(stride)
-        .enumerate()
-        .for_each(|(y, row)| {
-            frame.row(y as u32, row);
-        });
-    img
+    Frame::new(scene, RenderOptions::FAST, false).image(true).0
 }
 
 /// The scene with the moving objects' shapes left out: while it stays the same, a
@@ -242,7 +306,10 @@ impl Incremental {
     pub fn render(&mut self, scene: &Scene) -> &Image {
         let key = static_part(scene);
         let frame = Frame::new(scene, RenderOptions::FAST, true);
+        // With adaptive anti-aliasing a pixel's sampling depends on its neighbours'
+        // colours, which motion changes: those frames are traced in full.
         let reuse = scene.motion_bounds.is_some()
+            && scene.adaptive.is_none_or(|_| scene.samples <= 1)
             && self.image.is_some()
             && self.key.as_ref() == Some(&key);
         self.full = !reuse;
@@ -259,14 +326,8 @@ impl Incremental {
                     }
                 });
         } else {
-            let mut img = blank(scene);
-            let stride = img.width as usize * 4;
-            self.dynamic = img
-                .rgba
-                .par_chunks_exact_mut(stride)
-                .enumerate()
-                .map(|(y, row)| frame.row(y as u32, row))
-                .collect();
+            let (img, dynamic) = frame.image(true);
+            self.dynamic = dynamic;
             self.image = Some(img);
             self.key = Some(key);
         }

@@ -75,8 +75,12 @@ pub struct Scene {
     pub size: (u32, u32),
     /// Mirror bounces after the primary hit.
     pub max_depth: u32,
-    /// Samples per pixel.
+    /// Samples per pixel (with `adaptive`, only at edges).
     pub samples: u32,
+    /// Adaptive anti-aliasing: `Some(t)` traces one sample per pixel, then
+    /// `samples` in the pixels whose sRGB colour differs from a 4-neighbour's by
+    /// more than `t` (0..=1) in some channel; `None` gives every pixel `samples`.
+    pub adaptive: Option<f32>,
     /// A box every moving object stays inside at every time (min, max corners), if
     /// known: pixels whose rays never enter it never change while the rest of the
     /// scene stays the same.
@@ -97,6 +101,7 @@ impl Default for Scene {
             size: (16, 16),
             max_depth: 0,
             samples: 1,
+            adaptive: None,
             motion_bounds: None,
         }
     }

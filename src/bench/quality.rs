@@ -1,0 +1,189 @@
+//! `newtons-cradle bench render-quality`: picture error against render time. For
+//! each anti-aliasing mode (1, 4 and 16 samples per pixel, adaptive 16) and each
+//! reflection depth 0..=5, one frame of the swinging cradle is timed and compared
+//! with a reference traced at 64 samples per pixel and depth 8.
+
+use super::median;
+use crate::config::Config;
+use crate::scene::{Control, CradleWorld};
+use crate::trace::{self, Image, Scene};
+use serde_json::json;
+use std::time::Instant;
+
+/// An anti-aliasing mode.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Mode {
+    /// Name in tables and JSON.
+    pub name: &'static str,
+    /// Samples per pixel (at edges only when adaptive).
+    pub samples: u32,
+    /// Adaptive: supersample only edge pixels.
+    pub adaptive: bool,
+}
+
+/// The modes compared.
+pub const MODES: [Mode; 4] = [
+    Mode {
+        name: "1 spp",
+        samples: 1,
+        adaptive: false,
+    },
+    Mode {
+        name: "4 spp",
+        samples: 4,
+        adaptive: false,
+    },
+    Mode {
+        name: "16 spp",
+        samples: 16,
+        adaptive: false,
+    },
+    Mode {
+        name: "adaptive 16",
+        samples: 16,
+        adaptive: true,
+    },
+];
+
+/// Reflection depths compared.
+pub const DEPTHS: std::ops::RangeInclusive<u32> = 0..=5;
+
+/// One measured frame.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Row {
+    /// Anti-aliasing mode.
+    pub mode: &'static str,
+    /// Reflection depth.
+    pub depth: u32,
+    /// Median ms per frame.
+    pub ms_median: f64,
+    /// Root mean square error against the reference, in 8-bit sRGB levels.
+    pub rmse: f64,
+    /// `20 log10(255 / rmse)` (dB); infinite for an exact match.
+    pub psnr: f64,
+    /// PSNR against 16 samples per pixel at the same depth (dB).
+    pub psnr_vs_16: f64,
+}
+
+impl Row {
+    /// The row as JSON (an infinite PSNR is written as null).
+    #[must_use]
+    pub fn json(&self) -> String {
+        let db = |v: f64| v.is_finite().then_some(v);
+        json!({"mode": self.mode, "depth": self.depth, "ms_median": self.ms_median,
+               "rmse": self.rmse, "psnr": db(self.psnr), "psnr_vs_16": db(self.psnr_vs_16)})
+        .to_string()
+    }
+}
+
+/// RMSE (8-bit levels) of `a` against `b` over the RGB channels.
+#[must_use]
+pub fn rmse(a: &Image, b: &Image) -> f64 {
+    let (sum, n) = a
+        .rgba
+        .chunks_exact(4)
+        .zip(b.rgba.chunks_exact(4))
+        .flat_map(|(p, q)| p[..3].iter().zip(&q[..3]))
+        .fold((0.0, 0usize), |(s, n), (x, y)| {
+            let d = f64::from(*x) - f64::from(*y);
+            (s + d * d, n + 1)
+        });
+    (sum / n.max(1) as f64).sqrt()
+}
+
+/// PSNR (dB) from an RMSE in 8-bit levels.
+#[must_use]
+pub fn psnr(rmse: f64) -> f64 {
+    20.0 * (255.0 / rmse).log10()
+}
+
+fn with(scene: &Scene, samples: u32, adaptive: Option<f32>, depth: u32) -> Scene {
+    Scene {
+        samples,
+        adaptive,
+        max_depth: depth,
+        ..scene.clone()
+    }
+}
+
+/// Runs the comparison on the frame at t = 0.5 s of the swinging cradle,
+/// timing `frames` renders per row on `threads` threads; calls `each` per row.
+///
+/// # Errors
+/// When a thread pool cannot be built.
+pub fn run(
+    config: &Config,
+    threads: usize,
+    frames: u32,
+    mut each: impl FnMut(&Row),
+) -> anyhow::Result<Vec<Row>> {
+    let pool = trace::pool(threads)?;
+    let mut world = CradleWorld::new(config);
+    world.send(Control::TogglePause);
+    world.show_at(0.5);
+    let scene = world.scene().clone();
+    let reference = pool.install(|| trace::render(&with(&scene, 64, None, 8)));
+    let threshold = config.render.adaptive_threshold as f32;
+    let mut rows = Vec::new();
+    for depth in DEPTHS {
+        let sixteen = pool.install(|| trace::render(&with(&scene, 16, None, depth)));
+        for mode in MODES {
+            let s = with(
+                &scene,
+                mode.samples,
+                mode.adaptive.then_some(threshold),
+                depth,
+            );
+            let mut times = Vec::new();
+            let mut img = None;
+            for _ in 0..frames {
+                let start = Instant::now();
+                img = Some(pool.install(|| trace::render(&s)));
+                times.push(start.elapsed().as_secs_f64() * 1e3);
+            }
+            let img = img.expect("at least one frame");
+            let e = rmse(&img, &reference);
+            let row = Row {
+                mode: mode.name,
+                depth,
+                ms_median: median(times),
+                rmse: e,
+                psnr: psnr(e),
+                psnr_vs_16: psnr(rmse(&img, &sixteen)),
+            };
+            each(&row);
+            rows.push(row);
+        }
+    }
+    Ok(rows)
+}
+
+/// Draws RMSE against ms per frame, one line per mode through depths 0..=5.
+///
+/// # Errors
+/// When the file cannot be written.
+pub fn plot(rows: &[Row], path: &std::path::Path, title: &str) -> anyhow::Result<()> {
+    use super::plot::{Axes, Panel, Series, log_log_svg};
+    let series = MODES
+        .iter()
+        .map(|m| Series {
+            name: format!("{} (depth 0..5)", m.name),
+            points: rows
+                .iter()
+                .filter(|r| r.mode == m.name)
+                .map(|r| (r.ms_median, r.rmse))
+                .collect(),
+        })
+        .collect();
+    log_log_svg(
+        path,
+        &[Panel {
+            title: title.to_owned(),
+            series,
+        }],
+        Axes {
+            x: "ms per frame",
+            y: "RMSE vs 64 spp, depth 8 (8-bit levels)",
+        },
+    )
+}
