@@ -137,7 +137,10 @@ fn run(cli: &Cli) -> Result<(), Failure> {
                     "{}x{}, {} balls, median of {frames} frames of a swinging cradle",
                     config.render.width, config.render.height, config.cradle.balls
                 )?;
-                writeln!(out, "threads  mode         ms/frame  vs 1 thread full")?;
+                writeln!(
+                    out,
+                    "threads  mode         ms/frame  vs 1 thread full  pixels traced"
+                )?;
             }
             let mut base = None;
             bench::bench_render(&config, &threads, frames, |row| {
@@ -146,11 +149,12 @@ fn run(cli: &Cli) -> Result<(), Failure> {
                 } else {
                     let b = *base.get_or_insert(row.ms_median);
                     format!(
-                        "{:>7}  {:<11}  {:>8.2}  {:>7.2}x",
+                        "{:>7}  {:<11}  {:>8.2}  {:>15.2}x  {:>12.1}%",
                         row.threads,
                         row.mode,
                         row.ms_median,
-                        b / row.ms_median
+                        b / row.ms_median,
+                        100.0 * row.traced
                     )
                 };
                 let _ = writeln!(out, "{line}");

@@ -536,3 +536,54 @@ fn adaptive_parallel_and_incremental_equal_serial() {
         }
     }
 }
+
+#[test]
+fn shadow_culling_leaves_every_byte_as_the_full_render_makes_it() {
+    use newtons_cradle::trace::{RenderOptions, render_serial_with};
+    // Lights high and low (one below the rails, so the frame's shadow reaches
+    // every point of the floor), beside the cradle, straight above, and
+    // directional; each picture equals the reference with every shadow ray
+    // testing every object.
+    let mut world = CradleWorld::new(&small_cradle((240, 120), 7, 2, 0.0));
+    world.show_at(0.45);
+    let base = world.scene().clone();
+    let white = Vec3::splat(0.6);
+    let lights = [
+        vec![Light::Point {
+            position: Vec3::new(-0.6, 0.9, 0.8),
+            color: white,
+        }],
+        vec![Light::Point {
+            position: Vec3::new(0.3, 0.2, 0.1),
+            color: white,
+        }],
+        vec![Light::Point {
+            position: Vec3::new(0.0, 2.0, 0.0),
+            color: white,
+        }],
+        vec![Light::Point {
+            position: Vec3::new(1.5, 0.05, -0.4),
+            color: white,
+        }],
+        vec![
+            Light::Directional {
+                direction: Vec3::new(0.3, -1.0, -0.2).normalize(),
+                color: white,
+            },
+            Light::Ambient {
+                color: Vec3::splat(0.1),
+            },
+        ],
+    ];
+    for set in lights {
+        let s = Scene {
+            lights: set.clone(),
+            ..base.clone()
+        };
+        assert!(
+            render_serial_with(&s, RenderOptions::FAST)
+                == render_serial_with(&s, RenderOptions::FULL),
+            "lights {set:?}"
+        );
+    }
+}

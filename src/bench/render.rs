@@ -24,6 +24,8 @@ pub struct Row {
     pub ms_median: f64,
     /// Frames timed.
     pub frames: u32,
+    /// Mean share of the pixels traced per timed frame (1 for full frames).
+    pub traced: f64,
 }
 
 impl Row {
@@ -31,7 +33,7 @@ impl Row {
     #[must_use]
     pub fn json(&self) -> String {
         json!({"threads": self.threads, "mode": self.mode, "width": self.width, "height": self.height,
-               "ms_median": self.ms_median, "frames": self.frames})
+               "ms_median": self.ms_median, "frames": self.frames, "traced": self.traced})
         .to_string()
     }
 }
@@ -55,6 +57,7 @@ pub fn bench_render(
             world.send(Control::TogglePause);
             let mut inc = trace::Incremental::new();
             let mut times = Vec::new();
+            let mut traced = 0.0;
             // Two warm-up frames (the first incremental one is traced in full).
             for f in 0..frames + 2 {
                 world.show_at(0.5 + f64::from(f) / 60.0);
@@ -67,6 +70,11 @@ pub fn bench_render(
                 let ms = start.elapsed().as_secs_f64() * 1e3;
                 if f >= 2 {
                     times.push(ms);
+                    traced += if mode == "full" {
+                        1.0
+                    } else {
+                        inc.dynamic_share()
+                    };
                 }
             }
             let row = Row {
@@ -76,6 +84,7 @@ pub fn bench_render(
                 height: config.render.height,
                 ms_median: median(times),
                 frames,
+                traced: traced / f64::from(frames),
             };
             each(&row);
             rows.push(row);

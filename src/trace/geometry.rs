@@ -41,46 +41,88 @@ pub fn hit_sphere(ray: &Ray, centre: Vec3, radius: f32) -> Option<f32> {
 /// from `a` to `b` with flat caps.
 #[must_use]
 pub fn hit_cylinder(ray: &Ray, a: Vec3, b: Vec3, radius: f32) -> Option<(f32, Vec3)> {
-    let axis = b - a;
-    let len = axis.length();
-    let u = axis / len;
-    let ao = ray.origin - a;
-    let (du, ou) = (ray.dir.dot(u), ao.dot(u));
-    let d_perp = ray.dir - u * du;
-    let o_perp = ao - u * ou;
-    let qa = d_perp.length_squared();
-    let qb = o_perp.dot(d_perp);
-    let qc = o_perp.length_squared() - radius * radius;
-    let mut best: Option<(f32, Vec3)> = None;
-    let mut take = |t: f32, n: Vec3| {
-        if t > T_MIN && best.is_none_or(|(bt, _)| t < bt) {
-            best = Some((t, n));
+    Cylinder::new(a, b, radius).hit(ray)
+}
+
+/// A capped cylinder with its axis worked out once per frame, not once per ray.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Cylinder {
+    a: Vec3,
+    b: Vec3,
+    /// Unit axis from `a` to `b`.
+    u: Vec3,
+    len: f32,
+    radius: f32,
+}
+
+impl Cylinder {
+    /// The cylinder from `a` to `b`.
+    #[must_use]
+    pub fn new(a: Vec3, b: Vec3, radius: f32) -> Self {
+        let axis = b - a;
+        let len = axis.length();
+        Self {
+            a,
+            b,
+            u: axis / len,
+            len,
+            radius,
         }
-    };
-    // Body: |o_perp + t d_perp| = r, within the axial extent. A ray parallel to the
-    // axis (qa ~ 0) can only meet the caps.
-    if qa > 1e-12 {
-        let disc = qb * qb - qa * qc;
-        if disc >= 0.0 {
-            let s = disc.sqrt();
-            for t in [(-qb - s) / qa, (-qb + s) / qa] {
-                let along = ou + t * du;
-                if (0.0..=len).contains(&along) {
-                    take(t, (o_perp + d_perp * t).normalize());
+    }
+
+    /// Nearest `t > T_MIN` and the outward normal where the ray meets it.
+    #[must_use]
+    pub fn hit(&self, ray: &Ray) -> Option<(f32, Vec3)> {
+        let Self {
+            a,
+            b,
+            u,
+            len,
+            radius,
+        } = *self;
+        let ao = ray.origin - a;
+        let (du, ou) = (ray.dir.dot(u), ao.dot(u));
+        let d_perp = ray.dir - u * du;
+        let o_perp = ao - u * ou;
+        let qa = d_perp.length_squared();
+        let qb = o_perp.dot(d_perp);
+        let qc = o_perp.length_squared() - radius * radius;
+        let mut best: Option<(f32, Vec3)> = None;
+        let mut take = |t: f32, n: Vec3| {
+            if t > T_MIN && best.is_none_or(|(bt, _)| t < bt) {
+                best = Some((t, n));
+            }
+        };
+        // Body: |o_perp + t d_perp| = r, within the axial extent. A ray parallel to the
+        // axis (qa ~ 0) can only meet the caps.
+        if qa > 1e-12 {
+            let disc = qb * qb - qa * qc;
+            // Missing the infinite cylinder misses the caps too (discs inside it):
+            // most rays that reach a thin string's box end here.
+            if disc < 0.0 {
+                return None;
+            }
+            {
+                let s = disc.sqrt();
+                for t in [(-qb - s) / qa, (-qb + s) / qa] {
+                    let along = ou + t * du;
+                    if (0.0..=len).contains(&along) {
+                        take(t, (o_perp + d_perp * t).normalize());
+                    }
                 }
             }
         }
-    }
-    // Caps: the planes through a (facing -u) and b (facing +u), within the radius.
-    if du.abs() > 1e-12 {
-        for (end, normal, along) in [(a, -u, 0.0), (b, u, len)] {
-            let t = (along - ou) / du;
-            if (ray.at(t) - end).length_squared() <= radius * radius {
-                take(t, normal);
+        // Caps: the planes through a (facing -u) and b (facing +u), within the radius.
+        if du.abs() > 1e-12 {
+            for (end, normal, along) in [(a, -u, 0.0), (b, u, len)] {
+                let t = (along - ou) / du;
+                if (ray.at(t) - end).length_squared() <= radius * radius {
+                    take(t, normal);
+                }
             }
         }
+        best
     }
-    best
 }
 
 /// `t > T_MIN` where the ray meets the plane through `point` with unit `normal`.

@@ -10,6 +10,7 @@ pub mod prepared;
 pub mod render;
 pub mod scene;
 pub mod shade;
+pub mod shadow;
 pub mod tiles;
 
 pub use prepared::Prepared;

@@ -2,8 +2,9 @@
 //! around everything but the planes, and the queries the shading needs (nearest
 //! hit, any hit).
 
-use super::geometry::{Aabb, Ray, hit_cylinder, hit_plane, hit_sphere};
-use super::scene::{Object, Scene, Shape};
+use super::geometry::{Aabb, Cylinder, Ray, hit_plane, hit_sphere};
+use super::scene::{Scene, Shape};
+use super::shadow::Footprints;
 use glam::Vec3;
 
 /// What a ray hit.
@@ -18,7 +19,7 @@ pub struct Hit {
 }
 
 /// Bounds of a shape; `None` for unbounded planes.
-fn bounds(shape: &Shape) -> Option<Aabb> {
+pub(crate) fn bounds(shape: &Shape) -> Option<Aabb> {
     match *shape {
         Shape::Sphere { centre, radius } => Some(Aabb {
             min: centre - radius,
@@ -38,11 +39,38 @@ fn bounds(shape: &Shape) -> Option<Aabb> {
     }
 }
 
+/// A shape with what its hit test needs worked out once per frame.
+#[derive(Debug, Clone, Copy)]
+enum Geom {
+    Sphere { centre: Vec3, radius: f32 },
+    Cylinder(Cylinder),
+    Plane { point: Vec3, normal: Vec3 },
+}
+
+impl Geom {
+    fn new(shape: &Shape) -> Self {
+        match *shape {
+            Shape::Sphere { centre, radius } => Self::Sphere { centre, radius },
+            Shape::Cylinder { a, b, radius } => Self::Cylinder(Cylinder::new(a, b, radius)),
+            Shape::Plane { point, normal } => Self::Plane { point, normal },
+        }
+    }
+}
+
 /// The scene with its acceleration data.
 #[derive(Debug, Clone)]
 pub struct Prepared<'a> {
     /// The flat scene.
     pub scene: &'a Scene,
+    geoms: Vec<Geom>,
+    /// Per object: its box (planes: empty, never used).
+    boxes: Vec<Aabb>,
+    /// Per object: its slot in `footprints` if it is a plane.
+    plane_slot: Vec<Option<usize>>,
+    /// Per plane, per light: which objects can shadow which part of it; used only
+    /// when `shadow_culling` is on.
+    footprints: Vec<Vec<Option<Footprints>>>,
+    shadow_culling: bool,
     bounded: Vec<(usize, Aabb)>,
     group: Aabb,
     planes: Vec<usize>,
@@ -64,8 +92,33 @@ impl<'a> Prepared<'a> {
                 None => planes.push(i),
             }
         }
+        let mut plane_slot = vec![None; scene.objects.len()];
+        let footprints = planes
+            .iter()
+            .enumerate()
+            .map(|(slot, &i)| {
+                plane_slot[i] = Some(slot);
+                let Shape::Plane { point, normal } = scene.objects[i].shape else {
+                    unreachable!("only planes are unbounded")
+                };
+                scene
+                    .lights
+                    .iter()
+                    .map(|l| Footprints::new(point, normal, l, &bounded))
+                    .collect()
+            })
+            .collect();
+        let mut boxes = vec![Aabb::EMPTY; scene.objects.len()];
+        for &(i, b) in &bounded {
+            boxes[i] = b;
+        }
         Self {
             scene,
+            boxes,
+            plane_slot,
+            footprints,
+            shadow_culling: false,
+            geoms: scene.objects.iter().map(|o| Geom::new(&o.shape)).collect(),
             bounded,
             group,
             planes,
@@ -73,13 +126,13 @@ impl<'a> Prepared<'a> {
     }
 
     /// Distance and outward normal of the ray's hit on object `i`, if any.
-    fn hit_object(o: &Object, ray: &Ray) -> Option<(f32, Vec3)> {
-        match o.shape {
-            Shape::Sphere { centre, radius } => {
+    fn hit_object(&self, i: usize, ray: &Ray) -> Option<(f32, Vec3)> {
+        match self.geoms[i] {
+            Geom::Sphere { centre, radius } => {
                 hit_sphere(ray, centre, radius).map(|t| (t, (ray.at(t) - centre) / radius))
             }
-            Shape::Cylinder { a, b, radius } => hit_cylinder(ray, a, b, radius),
-            Shape::Plane { point, normal } => hit_plane(ray, point, normal).map(|t| (t, normal)),
+            Geom::Cylinder(c) => c.hit(ray),
+            Geom::Plane { point, normal } => hit_plane(ray, point, normal).map(|t| (t, normal)),
         }
     }
 
@@ -100,7 +153,7 @@ impl<'a> Prepared<'a> {
         let mut best: Option<(f32, usize, Vec3)> = None;
         for &i in candidates {
             let limit = best.map_or(t_max, |b| b.0);
-            if let Some((t, n)) = Self::hit_object(&self.scene.objects[i], ray)
+            if let Some((t, n)) = self.hit_object(i, ray)
                 && t < limit
             {
                 best = Some((t, i, n));
@@ -119,7 +172,7 @@ impl<'a> Prepared<'a> {
         let mut best: Option<(f32, usize, Vec3)> = None;
         let consider = |i: usize, best: &mut Option<(f32, usize, Vec3)>| {
             let limit = best.map_or(t_max, |b| b.0);
-            if let Some((t, n)) = Self::hit_object(&self.scene.objects[i], ray)
+            if let Some((t, n)) = self.hit_object(i, ray)
                 && t < limit
             {
                 *best = Some((t, i, n));
@@ -146,17 +199,51 @@ impl<'a> Prepared<'a> {
     /// Whether anything lies on the ray before `t_max` (shadow rays: any hit ends them).
     #[must_use]
     pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
-        let blocks = |i: usize| {
-            Self::hit_object(&self.scene.objects[i], ray).is_some_and(|(t, _)| t < t_max)
-        };
+        self.occluded_by(ray, t_max, None)
+    }
+
+    /// Turns shadow culling ([`Footprints`]) on or off (off: every shadow ray
+    /// tests every object, the reference).
+    #[must_use]
+    pub fn with_shadow_culling(mut self, on: bool) -> Self {
+        self.shadow_culling = on;
+        self
+    }
+
+    /// [`Self::occluded`] for a shadow ray towards light `light` from a point of
+    /// object `from`: with shadow culling, from a plane only the objects whose
+    /// shadow can fall there are tested. The same answer either way.
+    #[must_use]
+    pub fn occluded_towards(&self, from: usize, light: usize, ray: &Ray, t_max: f32) -> bool {
+        let footprints = self
+            .plane_slot
+            .get(from)
+            .copied()
+            .flatten()
+            .filter(|_| self.shadow_culling)
+            .and_then(|slot| self.footprints[slot][light].as_ref());
+        self.occluded_by(ray, t_max, footprints)
+    }
+
+    /// Any hit before `t_max` on a plane, or, inside the box around them all, on a
+    /// bounded object (each tested through its own box): all of them, or those
+    /// `footprints` leaves for the ray's start.
+    fn occluded_by(&self, ray: &Ray, t_max: f32, footprints: Option<&Footprints>) -> bool {
+        let blocks = |i: usize| self.hit_object(i, ray).is_some_and(|(t, _)| t < t_max);
         if self.planes.iter().any(|&i| blocks(i)) {
             return true;
         }
         let inv = ray.dir.recip();
-        self.group.hit(ray, inv, t_max)
-            && self
+        if !self.group.hit(ray, inv, t_max) {
+            return false;
+        }
+        let test = |i: usize| self.boxes[i].hit(ray, inv, t_max) && blocks(i);
+        match footprints.and_then(|fp| fp.candidates(ray.origin)) {
+            Some((cell, always)) => cell.iter().chain(always).any(|&i| test(i)),
+            None => self
                 .bounded
                 .iter()
-                .any(|&(i, ref b)| b.hit(ray, inv, t_max) && blocks(i))
+                .any(|&(i, ref b)| b.hit(ray, inv, t_max) && blocks(i)),
+        }
     }
 }

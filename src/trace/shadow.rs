@@ -1,0 +1,196 @@
+//! Shadow rays from a plane (the floor, most of the picture) test only the objects
+//! whose shadow can fall where they start.
+//!
+//! Seen from a point light, an object's box projects onto the plane as the convex
+//! hull of its eight projected corners (a directional light projects in parallel).
+//! A shadow ray from a point of the plane to the light runs along the line that
+//! projects onto that point, so only objects whose projected rectangle holds the
+//! point can block it. The rectangles are binned in a grid over the plane; a query
+//! looks up its cell. The answer is a yes/no of "anything in the way", so testing
+//! a superset of the blockers in any order gives the same bits as testing them all.
+
+use super::geometry::Aabb;
+use super::scene::Light;
+use glam::{Vec2, Vec3};
+
+/// Where the light shines from, for projecting onto the plane.
+#[derive(Debug, Clone, Copy)]
+enum Source {
+    Point(Vec3),
+    /// Direction the light travels.
+    Directional(Vec3),
+}
+
+/// The objects that can shadow each cell of one plane from one light.
+#[derive(Debug, Clone)]
+pub struct Footprints {
+    /// A point of the plane and its unit normal (the lit side).
+    origin: Vec3,
+    normal: Vec3,
+    /// Unit vectors spanning the plane.
+    e1: Vec3,
+    e2: Vec3,
+    source: Source,
+    /// Grid over the rectangles: corner, cell size, cells per axis.
+    min: Vec2,
+    inv_cell: Vec2,
+    n: (usize, usize),
+    /// Per cell, object indices in query order.
+    cells: Vec<Vec<usize>>,
+    /// Objects reaching up to the light's height or beyond: they can shadow any
+    /// point, so every query tests them.
+    always: Vec<usize>,
+}
+
+impl Footprints {
+    /// The footprints on the plane through `origin` with unit `normal` of the
+    /// bounded objects `bounded` (index, box, in query order) lit by `light`.
+    /// `None` for ambient light, or a light on the other side of the plane (its
+    /// shadow rays from the lit side never start).
+    #[must_use]
+    pub fn new(
+        origin: Vec3,
+        normal: Vec3,
+        light: &Light,
+        bounded: &[(usize, Aabb)],
+    ) -> Option<Self> {
+        let source = match *light {
+            Light::Ambient { .. } => return None,
+            Light::Point { position, .. } => {
+                if (position - origin).dot(normal) <= 0.0 {
+                    return None;
+                }
+                Source::Point(position)
+            }
+            Light::Directional { direction, .. } => {
+                if direction.dot(normal) >= 0.0 {
+                    return None;
+                }
+                Source::Directional(direction)
+            }
+        };
+        let e1 = normal.any_orthonormal_vector();
+        let e2 = normal.cross(e1);
+        let mut fp = Self {
+            origin,
+            normal,
+            e1,
+            e2,
+            source,
+            min: Vec2::ZERO,
+            inv_cell: Vec2::ZERO,
+            n: (0, 0),
+            cells: Vec::new(),
+            always: Vec::new(),
+        };
+        let mut rects = Vec::new();
+        for &(i, b) in bounded {
+            match fp.rect(&b) {
+                Some(r) => rects.push((i, r)),
+                None => fp.always.push(i),
+            }
+        }
+        if rects.is_empty() {
+            return Some(fp);
+        }
+        let (lo, hi) = rects.iter().fold(
+            (Vec2::splat(f32::INFINITY), Vec2::splat(f32::NEG_INFINITY)),
+            |(lo, hi), (_, (a, b))| (lo.min(*a), hi.max(*b)),
+        );
+        // About four cells per object along each axis, at most 256.
+        let per_axis = ((rects.len() as f32).sqrt() * 8.0).clamp(8.0, 256.0) as usize;
+        let size = (hi - lo).max(Vec2::splat(1e-6));
+        fp.min = lo;
+        fp.n = (per_axis, per_axis);
+        fp.inv_cell = Vec2::splat(per_axis as f32) / size;
+        fp.cells = vec![Vec::new(); per_axis * per_axis];
+        for (i, (a, b)) in rects {
+            let (x0, y0) = fp.cell_of(a);
+            let (x1, y1) = fp.cell_of(b);
+            for y in y0..=y1 {
+                for x in x0..=x1 {
+                    fp.cells[y * per_axis + x].push(i);
+                }
+            }
+        }
+        Some(fp)
+    }
+
+    /// Plane coordinates of a point on (or projected onto) the plane.
+    fn coords(&self, p: Vec3) -> Vec2 {
+        let d = p - self.origin;
+        Vec2::new(d.dot(self.e1), d.dot(self.e2))
+    }
+
+    /// Where the line from the light through `x` meets the plane; `None` when `x`
+    /// is level with the light or beyond it.
+    fn project(&self, x: Vec3) -> Option<Vec2> {
+        match self.source {
+            Source::Point(l) => {
+                let down = (l - x).dot(self.normal);
+                // A margin of a millionth of the light's height keeps the division
+                // well away from 0.
+                let height = (l - self.origin).dot(self.normal);
+                if down <= 1e-6 * height {
+                    return None;
+                }
+                let s = height / down;
+                Some(self.coords(l + (x - l) * s))
+            }
+            Source::Directional(d) => {
+                let s = -(x - self.origin).dot(self.normal) / d.dot(self.normal);
+                Some(self.coords(x + d * s))
+            }
+        }
+    }
+
+    /// The rectangle holding the box's shadow, padded for the rounding of the
+    /// projections (1e-4 of the coordinates' size, and 1e-5 m).
+    fn rect(&self, b: &Aabb) -> Option<(Vec2, Vec2)> {
+        let mut lo = Vec2::splat(f32::INFINITY);
+        let mut hi = Vec2::splat(f32::NEG_INFINITY);
+        for k in 0..8 {
+            let c = Vec3::new(
+                if k & 1 == 0 { b.min.x } else { b.max.x },
+                if k & 2 == 0 { b.min.y } else { b.max.y },
+                if k & 4 == 0 { b.min.z } else { b.max.z },
+            );
+            let p = self.project(c)?;
+            lo = lo.min(p);
+            hi = hi.max(p);
+        }
+        if !(lo.is_finite() && hi.is_finite()) {
+            return None;
+        }
+        let pad = 1e-5 + 1e-4 * lo.abs().max(hi.abs()).max_element();
+        Some((lo - Vec2::splat(pad), hi + Vec2::splat(pad)))
+    }
+
+    /// The cell holding `p`, clamped to the grid.
+    fn cell_of(&self, p: Vec2) -> (usize, usize) {
+        let c = (p - self.min) * self.inv_cell;
+        let clamp = |v: f32, n: usize| (v.max(0.0) as usize).min(n - 1);
+        (clamp(c.x, self.n.0), clamp(c.y, self.n.1))
+    }
+
+    /// The objects that can block a shadow ray starting at `start` (just off the
+    /// plane on its lit side): the cell's and the always-tested ones. `None` when
+    /// `start` is not on the lit side.
+    pub fn candidates(&self, start: Vec3) -> Option<(&[usize], &[usize])> {
+        if (start - self.origin).dot(self.normal) < 0.0 {
+            return None;
+        }
+        let empty: &[usize] = &[];
+        let q = self.project(start)?;
+        if self.cells.is_empty() {
+            return Some((empty, &self.always));
+        }
+        let c = (q - self.min) * self.inv_cell;
+        let inside = c.x >= 0.0 && c.y >= 0.0 && c.x < self.n.0 as f32 && c.y < self.n.1 as f32;
+        if !inside {
+            return Some((empty, &self.always));
+        }
+        let (x, y) = self.cell_of(q);
+        Some((&self.cells[y * self.n.0 + x], &self.always))
+    }
+}
