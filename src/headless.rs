@@ -40,7 +40,9 @@ pub fn render(config: &Config, start: f64, output: &Output) -> anyhow::Result<Ve
     let mut written = Vec::new();
     match output {
         Output::Png(path) => {
-            export::write_png(path, &frame_at(start))?;
+            // One frame: nothing to reuse, so no motion cells to note.
+            world.show_at(start);
+            export::write_png(path, &pool.install(|| trace::render(world.scene())))?;
             written.push(path.clone());
         }
         Output::Sequence { dir, frames, fps } => {

@@ -4,6 +4,7 @@
 //! [`Prepared`] adds bounds, [`shade::trace`] shades a ray (Whitted), and
 //! [`render`] / [`render_serial`] fill an sRGB RGBA8 [`Image`].
 
+pub mod bvh;
 pub mod camera;
 pub mod geometry;
 pub mod prepared;

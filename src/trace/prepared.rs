@@ -2,10 +2,12 @@
 //! around everything but the planes, and the queries the shading needs (nearest
 //! hit, any hit).
 
+use super::bvh::Bvh;
 use super::geometry::{Aabb, Cylinder, Ray, hit_plane, hit_sphere};
 use super::scene::{Scene, Shape};
 use super::shadow::Footprints;
 use glam::Vec3;
+use std::cell::Cell;
 
 /// What a ray hit.
 #[derive(Debug, Clone, Copy)]
@@ -71,6 +73,9 @@ pub struct Prepared<'a> {
     /// when `shadow_culling` is on.
     footprints: Vec<Vec<Option<Footprints>>>,
     shadow_culling: bool,
+    /// Over `bounded`; used only when `use_bvh` is on.
+    bvh: Bvh,
+    use_bvh: bool,
     bounded: Vec<(usize, Aabb)>,
     group: Aabb,
     planes: Vec<usize>,
@@ -118,6 +123,8 @@ impl<'a> Prepared<'a> {
             plane_slot,
             footprints,
             shadow_culling: false,
+            bvh: Bvh::new(&bounded.iter().map(|(_, b)| *b).collect::<Vec<_>>()),
+            use_bvh: false,
             geoms: scene.objects.iter().map(|o| Geom::new(&o.shape)).collect(),
             bounded,
             group,
@@ -169,6 +176,9 @@ impl<'a> Prepared<'a> {
     /// The nearest hit before `t_max`.
     #[must_use]
     pub fn closest(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
+        if self.use_bvh {
+            return self.closest_bvh(ray, t_max);
+        }
         let mut best: Option<(f32, usize, Vec3)> = None;
         let consider = |i: usize, best: &mut Option<(f32, usize, Vec3)>| {
             let limit = best.map_or(t_max, |b| b.0);
@@ -194,6 +204,52 @@ impl<'a> Prepared<'a> {
             object,
             normal: if n.dot(ray.dir) > 0.0 { -n } else { n },
         })
+    }
+
+    /// [`Self::closest`] through the hierarchy: the same hit, since among equally
+    /// near hits the one earliest in query order wins, as in the linear scan.
+    fn closest_bvh(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
+        // (t, place in query order, object, normal)
+        let best: Cell<Option<(f32, usize, usize, Vec3)>> = Cell::new(None);
+        let limit = || best.get().map_or(t_max, |b| b.0);
+        let consider = |i: usize, key: usize| {
+            if let Some((t, n)) = self.hit_object(i, ray) {
+                let better = match best.get() {
+                    None => t < t_max,
+                    Some((bt, bk, _, _)) => t < bt || (t == bt && key < bk),
+                };
+                if better {
+                    best.set(Some((t, key, i, n)));
+                }
+            }
+        };
+        for (key, &i) in self.planes.iter().enumerate() {
+            consider(i, key);
+        }
+        let inv = ray.dir.recip();
+        if self.group.hit(ray, inv, t_max) {
+            let first = self.planes.len();
+            self.bvh.traverse(ray, inv, limit, |k| {
+                let (i, b) = self.bounded[k];
+                if b.hit(ray, inv, limit()) {
+                    consider(i, first + k);
+                }
+                false
+            });
+        }
+        best.get().map(|(t, _, object, n)| Hit {
+            t,
+            object,
+            normal: if n.dot(ray.dir) > 0.0 { -n } else { n },
+        })
+    }
+
+    /// Turns the hierarchy on or off for secondary rays (off: each tests every
+    /// object's box, the reference).
+    #[must_use]
+    pub fn with_bvh(mut self, on: bool) -> Self {
+        self.use_bvh = on;
+        self
     }
 
     /// Whether anything lies on the ray before `t_max` (shadow rays: any hit ends them).
@@ -240,6 +296,15 @@ impl<'a> Prepared<'a> {
         let test = |i: usize| self.boxes[i].hit(ray, inv, t_max) && blocks(i);
         match footprints.and_then(|fp| fp.candidates(ray.origin)) {
             Some((cell, always)) => cell.iter().chain(always).any(|&i| test(i)),
+            None if self.use_bvh => self.bvh.traverse(
+                ray,
+                inv,
+                || t_max,
+                |k| {
+                    let (i, b) = self.bounded[k];
+                    b.hit(ray, inv, t_max) && blocks(i)
+                },
+            ),
             None => self
                 .bounded
                 .iter()

@@ -75,6 +75,8 @@ pub struct RenderOptions {
     pub tile_culling: bool,
     /// Shadow rays from a plane test only the objects whose shadow can fall there.
     pub shadow_culling: bool,
+    /// Secondary rays walk a bounding volume hierarchy instead of every box.
+    pub bvh: bool,
 }
 
 impl RenderOptions {
@@ -82,11 +84,13 @@ impl RenderOptions {
     pub const FAST: Self = Self {
         tile_culling: true,
         shadow_culling: true,
+        bvh: true,
     };
     /// Nothing skipped: the reference the skips are tested against.
     pub const FULL: Self = Self {
         tile_culling: false,
         shadow_culling: false,
+        bvh: false,
     };
 }
 
@@ -107,7 +111,9 @@ struct Frame<'a> {
 impl<'a> Frame<'a> {
     /// `track`: note which pixels' rays enter the motion box (incremental frames only).
     fn new(scene: &'a Scene, options: RenderOptions, track: bool) -> Self {
-        let prepared = Prepared::new(scene).with_shadow_culling(options.shadow_culling);
+        let prepared = Prepared::new(scene)
+            .with_shadow_culling(options.shadow_culling)
+            .with_bvh(options.bvh);
         let bound = radiance_bound(&prepared);
         let camera = CameraRays::new(&scene.camera, scene.size.0, scene.size.1);
         Self {

@@ -61,12 +61,13 @@ impl MotionGrid {
         let c1 = ((hi - self.bounds.min) * self.inv_cell)
             .floor()
             .clamp(Vec3::ZERO, n);
+        // One run of x bits, repeated for each (y, z) row in range.
+        let (x0, x1) = (c0.x as u32, c1.x as u32);
+        let run = ((1u64 << (x1 + 1)) - 1) & !((1u64 << x0) - 1);
         let mut mask = 0;
         for z in c0.z as usize..=c1.z as usize {
             for y in c0.y as usize..=c1.y as usize {
-                for x in c0.x as usize..=c1.x as usize {
-                    mask |= 1u64 << ((z * ny + y) * nx + x);
-                }
+                mask |= run << ((z * ny + y) * nx);
             }
         }
         mask
