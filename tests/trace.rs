@@ -376,7 +376,7 @@ fn small_cradle(size: (u32, u32), balls: usize, lift: usize, gap: f64) -> Config
 }
 
 #[test]
-fn tile_culling_leaves_every_byte_as_the_full_render_makes_it() {
+fn tile_culling_and_the_bvh_leave_every_byte_as_the_full_render_makes_it() {
     use newtons_cradle::trace::{RenderOptions, render_serial_with};
     // Swinging cradles of several sizes and lifts, at times spread over a swing,
     // and a camera close enough that shapes reach past the picture's edges.
@@ -385,6 +385,8 @@ fn tile_culling_leaves_every_byte_as_the_full_render_makes_it() {
         (5, 2, 0.0, 0.37),
         (9, 3, 0.002, 0.8),
         (20, 3, 0.001, 1.3),
+        (60, 5, 0.0, 0.6),
+        (200, 12, 0.0, 0.9),
     ] {
         let mut world = CradleWorld::new(&small_cradle((300, 150), balls, lift, gap));
         world.show_at(t);

@@ -158,8 +158,15 @@ impl<'a> Prepared<'a> {
     #[must_use]
     pub fn closest_among(&self, ray: &Ray, t_max: f32, candidates: &[usize]) -> Option<Hit> {
         let mut best: Option<(f32, usize, Vec3)> = None;
+        let inv = ray.dir.recip();
         for &i in candidates {
             let limit = best.map_or(t_max, |b| b.0);
+            // The box test first, as the full scan does: a hit that grazes a
+            // shape's box can round either way, and must round the same way.
+            let planar = self.plane_slot[i].is_some();
+            if !planar && !self.boxes[i].hit(ray, inv, limit) {
+                continue;
+            }
             if let Some((t, n)) = self.hit_object(i, ray)
                 && t < limit
             {
