@@ -115,14 +115,8 @@ pub struct BenchStressArgs {
 /// # Errors
 /// A flag out of range.
 pub fn bench_stress_scale(a: &BenchStressArgs) -> Result<f64, InputError> {
-    if a.scale.is_finite() && (0.01..=1000.0).contains(&a.scale) {
-        Ok(a.scale)
-    } else {
-        Err(InputError::Flag(format!(
-            "--scale {}: not allowed; allowed: 0.01..=1000",
-            a.scale
-        )))
-    }
+    let ok = a.scale.is_finite() && (0.01..=1000.0).contains(&a.scale);
+    flag_value("--scale", a.scale, ok, "0.01..=1000")
 }
 
 /// `bench physics`'s flags.
@@ -455,18 +449,10 @@ pub fn render_output(a: &RenderArgs) -> Result<crate::headless::Output, InputErr
 /// # Errors
 /// A flag out of range.
 pub fn bench_physics_dts(a: &BenchPhysicsArgs) -> Result<Vec<f64>, InputError> {
-    if !(a.duration.is_finite() && (0.1..=3600.0).contains(&a.duration)) {
-        return Err(InputError::Flag(format!(
-            "--duration {}: not allowed; allowed: 0.1..=3600 (s)",
-            a.duration
-        )));
-    }
-    if !(a.min_dt.is_finite() && (1e-7..=1e-2).contains(&a.min_dt)) {
-        return Err(InputError::Flag(format!(
-            "--min-dt {}: not allowed; allowed: 1e-7..=1e-2 (s)",
-            a.min_dt
-        )));
-    }
+    let ok = a.duration.is_finite() && (0.1..=3600.0).contains(&a.duration);
+    flag_value("--duration", a.duration, ok, "0.1..=3600 (s)")?;
+    let ok = a.min_dt.is_finite() && (1e-7..=1e-2).contains(&a.min_dt);
+    flag_value("--min-dt", a.min_dt, ok, "1e-7..=1e-2 (s)")?;
     // Three steps per decade from 1e-2 down to min_dt.
     let mut dts = Vec::new();
     for i in 0.. {
@@ -484,12 +470,31 @@ pub fn bench_physics_dts(a: &BenchPhysicsArgs) -> Result<Vec<f64>, InputError> {
 /// # Errors
 /// A flag out of range.
 pub fn bench_frames(a: &BenchRenderArgs) -> Result<u32, InputError> {
-    if (1..=10_000).contains(&a.frames) {
-        Ok(a.frames as u32)
+    let ok = (1..=10_000).contains(&a.frames);
+    flag_value("--frames", a.frames, ok, "1..=10000").map(|f| f as u32)
+}
+
+/// Checks `bench render-quality`'s flags; returns the frames per row.
+///
+/// # Errors
+/// A flag out of range.
+pub fn quality_frames(a: &BenchQualityArgs) -> Result<u32, InputError> {
+    let ok = (1..=1000).contains(&a.frames);
+    flag_value("--frames", a.frames, ok, "1..=1000").map(|f| f as u32)
+}
+
+/// `v` when `ok`; else the flag's error, naming what is allowed.
+fn flag_value<T: std::fmt::Display>(
+    flag: &str,
+    v: T,
+    ok: bool,
+    allowed: &str,
+) -> Result<T, InputError> {
+    if ok {
+        Ok(v)
     } else {
         Err(InputError::Flag(format!(
-            "--frames {}: not allowed; allowed: 1..=10000",
-            a.frames
+            "{flag} {v}: not allowed; allowed: {allowed}"
         )))
     }
 }

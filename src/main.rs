@@ -88,7 +88,7 @@ fn run(cli: &Cli) -> Result<(), Failure> {
             None
         }
         Some(Command::Bench(BenchCommand::RenderQuality(args))) => {
-            quality_frames(args)?;
+            cli::quality_frames(args)?;
             None
         }
         _ => None,
@@ -289,25 +289,13 @@ fn bench_stress(scale: f64, json: bool) -> Result<(), Failure> {
     }
 }
 
-/// `bench render-quality`'s `--frames`, checked.
-fn quality_frames(args: &cli::BenchQualityArgs) -> Result<u32, InputError> {
-    if (1..=1000).contains(&args.frames) {
-        Ok(args.frames as u32)
-    } else {
-        Err(InputError::Flag(format!(
-            "--frames {}: not allowed; allowed: 1..=1000",
-            args.frames
-        )))
-    }
-}
-
 /// `bench render-quality`: the table (or JSON Lines) and the plot.
 fn bench_quality(
     config: &newtons_cradle::config::Config,
     args: &cli::BenchQualityArgs,
 ) -> Result<(), Failure> {
     use newtons_cradle::bench::quality;
-    let frames = quality_frames(args)?;
+    let frames = cli::quality_frames(args)?;
     let threads = config.render.threads;
     let mut out = io::stdout().lock();
     let title = format!(

@@ -217,6 +217,7 @@ pub fn plot(points: &[Point], plan: &Plan, path: &std::path::Path) -> anyhow::Re
         Axes {
             x: "CPU seconds",
             y: "max angle error (rad)",
+            legend_lower_left: false,
         },
     )
 }

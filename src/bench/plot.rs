@@ -28,6 +28,20 @@ pub struct Axes<'a> {
     pub x: &'a str,
     /// Label of the vertical axis.
     pub y: &'a str,
+    /// The legend in the lower left corner instead of the upper right.
+    pub legend_lower_left: bool,
+}
+
+/// A tick label: plain digits from 0.01 to 9999, else mantissa and exponent.
+fn tick(v: f64) -> String {
+    let a = v.abs();
+    if (1.0..1e4).contains(&a) {
+        format!("{v:.0}")
+    } else if (0.01..1.0).contains(&a) {
+        format!("{v:.2}")
+    } else {
+        format!("{v:.0e}")
+    }
 }
 
 /// The range of the positive, finite values in `vals`, widened by a factor 1.5 each
@@ -79,8 +93,10 @@ pub fn log_log_svg(path: &Path, panels: &[Panel], axes: Axes) -> anyhow::Result<
                 .configure_mesh()
                 .x_desc(axes.x)
                 .y_desc(axes.y)
-                .x_label_formatter(&|v| format!("{v:.0e}"))
-                .y_label_formatter(&|v| format!("{v:.0e}"))
+                .x_labels(8)
+                .y_labels(10)
+                .x_label_formatter(&|v| tick(*v))
+                .y_label_formatter(&|v| tick(*v))
                 .draw()?;
             for (i, s) in panel.series.iter().enumerate() {
                 let colour = Palette99::pick(i).to_rgba();
@@ -95,7 +111,11 @@ pub fn log_log_svg(path: &Path, panels: &[Panel], axes: Axes) -> anyhow::Result<
             }
             chart
                 .configure_series_labels()
-                .position(SeriesLabelPosition::UpperRight)
+                .position(if axes.legend_lower_left {
+                    SeriesLabelPosition::LowerLeft
+                } else {
+                    SeriesLabelPosition::UpperRight
+                })
                 .background_style(WHITE.mix(0.85))
                 .border_style(BLACK)
                 .draw()?;

@@ -184,6 +184,7 @@ pub fn plot(rows: &[Row], path: &std::path::Path, title: &str) -> anyhow::Result
         Axes {
             x: "ms per frame",
             y: "RMSE vs 64 spp, depth 8 (8-bit levels)",
+            legend_lower_left: true,
         },
     )
 }
