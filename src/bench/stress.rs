@@ -156,7 +156,7 @@ pub fn scenarios(scale: f64) -> Vec<Scenario> {
         Scenario {
             sample_every: 0.05,
             ..case(
-                "1e6 impacts: 200 balls, 20 lifted",
+                "200 balls, 20 lifted (3600 per strike)",
                 base(200),
                 20,
                 30.0,
