@@ -1,7 +1,8 @@
 //! Property tests over random valid configs and random asset text.
 
 use newtons_cradle::config::{Config, parse};
-use newtons_cradle::physics::{Cradle, Integrator};
+use newtons_cradle::physics::contact::{self, Resolution};
+use newtons_cradle::physics::{Cradle, CradleParams, Integrator};
 use proptest::prelude::*;
 
 fn valid_config() -> impl Strategy<Value = Config> {
@@ -76,6 +77,50 @@ proptest! {
         let mut cradle = Cradle::new(config.cradle_params(), integrator, 1e-3, config.start.lift, config.lift_angle());
         let s = cradle.snapshot(1.0);
         prop_assert!(s.theta.iter().chain(&s.omega).all(|v| v.is_finite()));
+    }
+
+    #[test]
+    fn no_angle_exceeds_what_the_energy_allows(config in valid_config()) {
+        let p = config.cradle_params();
+        let (k, a) = (config.start.lift as f64, config.lift_angle());
+        // All the energy of k balls lifted to A in one ball: sin^2(max/2) = k sin^2(A/2);
+        // with one ball lifted that is the initial angle itself.
+        let bound = 2.0 * (k.sqrt() * (0.5 * a).sin()).min(1.0).asin();
+        let mut cradle = Cradle::new(p, Integrator::Exact, 1e-3, config.start.lift, a);
+        for n in 1..=200 {
+            let s = cradle.snapshot(f64::from(n) * 0.01);
+            for th in &s.theta {
+                // 1e-9 rad: the round-off of flights restarted at each impact.
+                prop_assert!(th.abs() <= bound + 1e-9, "{} rad past the bound {} at t = {}", th.abs(), bound, s.t);
+            }
+        }
+    }
+
+    #[test]
+    fn each_impact_pushes_the_pair_equally_and_oppositely(
+        gap in prop_oneof![Just(0.0), 0.0f64..0.01],
+        len_ratio in 1.5f64..8.0,
+        ta in -1.5f64..1.5,
+        dt in -0.2f64..0.2,
+        wa in -20.0f64..20.0,
+        wb in -20.0f64..20.0,
+        e in 0.0f64..=1.0,
+    ) {
+        let p = CradleParams { balls: 2, radius: 0.02, mass: 0.26, length: 0.02 * len_ratio, gap, gravity: 9.81, restitution: e, hertz: None };
+        let (mut theta, mut omega) = (vec![ta, ta + dt], vec![wa, wb]);
+        let before = contact::closing_speed(&p, (theta[0], omega[0]), (theta[1], omega[1]));
+        prop_assume!(before < -1e-3 && (theta[0] - theta[1]).abs() > 1e-6);
+        let (ja, jb) = contact::levers(&p, theta[0], theta[1]);
+        let r = Resolution { restitution: e, rest_speed: 1e-9, touch: 1e-11 };
+        contact::impact(&p, &r, &mut theta, &mut omega, 0);
+        // The contact impulse P acts as -P on ball 0 and +P on ball 1 along the
+        // normal: I dw0 = -P J0 and I dw1 = P J1, so dw0 / J0 + dw1 / J1 = 0, to
+        // the round-off of a few operations on numbers of size |dw / J|.
+        let (p0, p1) = ((omega[0] - wa) / ja, (omega[1] - wb) / jb);
+        prop_assert!((p0 + p1).abs() <= 1e-12 * p0.abs().max(1.0), "{} vs {}", p0, p1);
+        // And the pair separates at e times the speed it closed at.
+        let after = contact::closing_speed(&p, (theta[0], omega[0]), (theta[1], omega[1]));
+        prop_assert!((after + e * before).abs() <= 1e-12 * before.abs(), "{} after {}", after, before);
     }
 
     #[test]
