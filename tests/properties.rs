@@ -80,18 +80,30 @@ proptest! {
     }
 
     #[test]
-    fn no_angle_exceeds_what_the_energy_allows(config in valid_config()) {
+    fn no_ball_swings_higher_than_it_may(config in valid_config()) {
         let p = config.cradle_params();
         let (k, a) = (config.start.lift as f64, config.lift_angle());
-        // All the energy of k balls lifted to A in one ball: sin^2(max/2) = k sin^2(A/2);
-        // with one ball lifted that is the initial angle itself.
-        let bound = 2.0 * (k.sqrt() * (0.5 * a).sin()).min(1.0).asin();
         let mut cradle = Cradle::new(p, Integrator::Exact, 1e-3, config.start.lift, a);
+        // Touching balls below the horizontal meet at equal angles, where an
+        // impact between equal pendulums gives each a mix (1 -+ e)/2, (1 +- e)/2 of
+        // the two speeds: no ball ever moves faster than the fastest did, so none
+        // passes the initial angle. With gaps, or above the horizontal (where
+        // touching balls can meet at different angles), the levers differ and
+        // energy can gather in one ball (8 balls, 5 lifted to 157 deg, 5 mm gaps
+        // sends one over the top), so there only the energy bounds the height:
+        // sin^2(theta/2) <= k sin^2(A/2).
+        let touching = p.gap == 0.0 && a < std::f64::consts::FRAC_PI_2;
+        let height = |th: f64| (0.5 * th).sin().powi(2);
+        let most = k * height(a);
         for n in 1..=200 {
             let s = cradle.snapshot(f64::from(n) * 0.01);
-            for th in &s.theta {
-                // 1e-9 rad: the round-off of flights restarted at each impact.
-                prop_assert!(th.abs() <= bound + 1e-9, "{} rad past the bound {} at t = {}", th.abs(), bound, s.t);
+            for &th in &s.theta {
+                if touching {
+                    // 1e-9 rad: the round-off of flights restarted at each impact.
+                    prop_assert!(th.abs() <= a + 1e-9, "{} rad past the initial {} at t = {}", th.abs(), a, s.t);
+                } else {
+                    prop_assert!(height(th) <= most * (1.0 + 1e-9) + 1e-15, "height {} past {} at t = {}", height(th), most, s.t);
+                }
             }
         }
     }

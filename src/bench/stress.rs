@@ -94,8 +94,10 @@ impl Report {
         {
             out.push(format!("overlap {:e} m > {tol:e} m", self.max_overlap));
         }
-        // The bound's own round-off: 1e-12 rad.
-        if self.max_angle.is_nan() || self.max_angle > self.angle_bound + 1e-12 {
+        // The bound's own round-off: 1e-12 rad. A bound of pi means the energy
+        // could carry a ball over the top: there is no angle to exceed.
+        let over_the_top = self.angle_bound >= std::f64::consts::PI;
+        if self.max_angle.is_nan() || (!over_the_top && self.max_angle > self.angle_bound + 1e-12) {
             out.push(format!(
                 "angle {} rad beyond the energy's bound {} rad",
                 self.max_angle, self.angle_bound
