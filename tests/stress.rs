@@ -12,6 +12,17 @@ fn every_stress_scenario_stays_within_its_limits() {
     for s in scenarios(1.0) {
         let r = run(&s);
         println!("{}", r.json());
+        // At this scale every run reaches its first strike and its rest time.
+        if s.first_strike_energy.is_some() {
+            assert!(
+                r.first_strike_energy.is_finite(),
+                "{}: no first strike",
+                s.name
+            );
+        }
+        if let Some(t) = s.rest_by {
+            assert!(s.duration > t, "{}: shorter than its rest time", s.name);
+        }
         impacts = impacts.max(r.impacts);
         failures.extend(
             r.failures(&s)
