@@ -10,7 +10,8 @@
 //! - [`scene`]: the ECS world: components, spawning, the frame schedule.
 //! - [`trace`]: the CPU ray tracer over the flat scene the extract stage fills.
 //! - [`export`], [`headless`]: PNG and GIF output, the `render` subcommand.
-//! - [`bench`]: `bench render`, milliseconds per frame over thread counts.
+//! - [`bench`]: `bench render` (ms per frame over thread counts), `render-quality`
+//!   (picture error against time), `physics` (work-precision) and `stress`.
 //! - [`app`]: the window (winit + pixels), keys, HUD and hot reload.
 //! - [`simulate`]: the `simulate` subcommand's JSON Lines.
 

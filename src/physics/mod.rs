@@ -3,8 +3,10 @@
 //! Each ball is a rigid physical pendulum in one plane. Between impacts it flies in
 //! closed form (`flight`, from the Jacobi elliptic functions of `elliptic`);
 //! impacts are roots of the neighbours' gap functions (`contact`, `roots`), found
-//! by the exact event-driven engine (`exact`). Fixed-step integrators (`stepped`)
-//! with the same impacts exist for comparison. `cradle` puts them behind one type.
+//! by the exact event-driven engine (`exact`). Soft Hertz contact (`hertz`)
+//! replaces the instantaneous impacts when asked for. Fixed-step integrators
+//! (`stepped`) with the same impacts exist for comparison. `cradle` puts them
+//! behind one type.
 
 pub mod contact;
 pub mod cradle;
