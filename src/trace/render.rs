@@ -5,7 +5,7 @@ use super::camera::CameraRays;
 use super::geometry::Aabb;
 use super::prepared::Prepared;
 use super::scene::Scene;
-use super::shade::{Motion, MotionGrid, radiance_bound, trace, trace_primary};
+use super::shade::{Cells, Motion, MotionGrid, radiance_bound, trace, trace_primary};
 use super::tiles::Tiles;
 use glam::Vec3;
 use rayon::prelude::*;
@@ -139,7 +139,7 @@ impl<'a> Frame<'a> {
 
     /// The linear colour of pixel `(x, y)` from samples at `offsets`, and the
     /// motion cells its rays passed through.
-    fn pixel(&self, x: u32, y: u32, offsets: &[(f32, f32)]) -> (Vec3, u64) {
+    fn pixel(&self, x: u32, y: u32, offsets: &[(f32, f32)]) -> (Vec3, Cells) {
         let mut motion = Motion::new(self.motion);
         let sum: Vec3 = offsets
             .iter()
@@ -156,18 +156,18 @@ impl<'a> Frame<'a> {
         (sum / offsets.len() as f32, motion.mask)
     }
 
-    fn put_with(&self, x: u32, y: u32, px: &mut [u8], offsets: &[(f32, f32)]) -> u64 {
+    fn put_with(&self, x: u32, y: u32, px: &mut [u8], offsets: &[(f32, f32)]) -> Cells {
         let (c, mask) = self.pixel(x, y, offsets);
         px.copy_from_slice(&[srgb8(c.x), srgb8(c.y), srgb8(c.z), 255]);
         mask
     }
 
-    fn put(&self, x: u32, y: u32, px: &mut [u8]) -> u64 {
+    fn put(&self, x: u32, y: u32, px: &mut [u8]) -> Cells {
         self.put_with(x, y, px, &self.offsets)
     }
 
     /// Traces a whole row with `offsets`; returns each pixel's motion cells.
-    fn row_with(&self, y: u32, out: &mut [u8], offsets: &[(f32, f32)]) -> Vec<u64> {
+    fn row_with(&self, y: u32, out: &mut [u8], offsets: &[(f32, f32)]) -> Vec<Cells> {
         (0..self.width)
             .zip(out.chunks_exact_mut(4))
             .map(|(x, px)| self.put_with(x, y, px, offsets))
@@ -195,7 +195,7 @@ impl<'a> Frame<'a> {
     /// every pixel at every sample, or with adaptive anti-aliasing one centre
     /// sample first and then every sample at the edges of that picture. Returns it
     /// with each pixel's motion cells (row-major).
-    fn image(&self, parallel: bool) -> (Image, Vec<u64>) {
+    fn image(&self, parallel: bool) -> (Image, Vec<Cells>) {
         let mut img = Image {
             width: self.width,
             height: self.height,
@@ -221,7 +221,7 @@ impl<'a> Frame<'a> {
                         0
                     }
                 })
-                .collect::<Vec<u64>>()
+                .collect::<Vec<Cells>>()
         });
         for (m, e) in masks.iter_mut().zip(edges) {
             m.iter_mut().zip(e).for_each(|(a, b)| *a |= b);
@@ -301,7 +301,7 @@ pub struct Incremental {
     last: Option<Scene>,
     image: Option<Image>,
     /// Per pixel, the motion cells its rays passed through when last traced.
-    masks: Vec<u64>,
+    masks: Vec<Cells>,
     full: bool,
     /// Pixels re-traced by the last frame.
     retraced: usize,
@@ -309,7 +309,7 @@ pub struct Incremental {
 
 /// The motion cells of the objects that moved from `before` to `after` (same
 /// objects in the same order), where they were and where they are.
-fn moved_cells(grid: &MotionGrid, before: &Scene, after: &Scene) -> u64 {
+fn moved_cells(grid: &MotionGrid, before: &Scene, after: &Scene) -> Cells {
     before
         .objects
         .iter()
@@ -319,7 +319,7 @@ fn moved_cells(grid: &MotionGrid, before: &Scene, after: &Scene) -> u64 {
             [&a.shape, &b.shape]
                 .into_iter()
                 .map(|s| {
-                    super::prepared::bounds(s).map_or(u64::MAX, |bx| grid.cells(bx.min, bx.max))
+                    super::prepared::bounds(s).map_or(Cells::MAX, |bx| grid.cells(bx.min, bx.max))
                 })
                 .fold(0, |m, c| m | c)
         })

@@ -19,7 +19,10 @@ const SURFACE_OFFSET: f32 = 2e-5;
 /// Half an 8-bit step, divided by the steepest slope of the sRGB encoding.
 const BAILOUT: f32 = 0.5 / 255.0 / 12.92;
 
-/// The box that holds every moving object at every time, cut into 16 x 4 x 1
+/// A set of cells of the motion grid, one bit each.
+pub type Cells = u128;
+
+/// The box that holds every moving object at every time, cut into 32 x 4 x 1
 /// cells (finest along x, the way the balls swing): a set of cells is a bit mask.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct MotionGrid {
@@ -32,8 +35,8 @@ pub struct MotionGrid {
 }
 
 impl MotionGrid {
-    /// Cells along x, y and z (16 * 4 * 1 = 64, the bits of a mask).
-    const N: [usize; 3] = [16, 4, 1];
+    /// Cells along x, y and z (32 * 4 * 1 = 128, the bits of a mask).
+    const N: [usize; 3] = [32, 4, 1];
 
     /// The grid over `bounds`.
     #[must_use]
@@ -48,7 +51,7 @@ impl MotionGrid {
 
     /// The cells a box from `lo` to `hi` overlaps (0 when it misses the grid).
     #[must_use]
-    pub fn cells(&self, lo: Vec3, hi: Vec3) -> u64 {
+    pub fn cells(&self, lo: Vec3, hi: Vec3) -> Cells {
         let (lo, hi) = (lo - self.pad, hi + self.pad);
         if lo.cmpgt(self.bounds.max).any() || hi.cmplt(self.bounds.min).any() {
             return 0;
@@ -63,7 +66,7 @@ impl MotionGrid {
             .clamp(Vec3::ZERO, n);
         // One run of x bits, repeated for each (y, z) row in range.
         let (x0, x1) = (c0.x as u32, c1.x as u32);
-        let run = ((1u64 << (x1 + 1)) - 1) & !((1u64 << x0) - 1);
+        let run = ((1 << (x1 + 1)) - 1) & !((1 << x0) - 1);
         let mut mask = 0;
         for z in c0.z as usize..=c1.z as usize {
             for y in c0.y as usize..=c1.y as usize {
@@ -76,7 +79,7 @@ impl MotionGrid {
     /// The cells the segment of `ray` from its start to `t_max` passes through
     /// (a superset: those of its part inside the box's bounding box).
     #[must_use]
-    pub fn segment(&self, ray: &Ray, t_max: f32) -> u64 {
+    pub fn segment(&self, ray: &Ray, t_max: f32) -> Cells {
         let inv = ray.dir.recip();
         let t1 = (self.bounds.min - self.pad - ray.origin) * inv;
         let t2 = (self.bounds.max + self.pad - ray.origin) * inv;
@@ -97,7 +100,7 @@ pub struct Motion {
     /// The grid, or `None` to track nothing.
     pub grid: Option<MotionGrid>,
     /// Cells passed so far.
-    pub mask: u64,
+    pub mask: Cells,
 }
 
 impl Motion {
