@@ -375,18 +375,10 @@ fn flag_message(e: &FieldError, given: &[(&str, &str, String)]) -> String {
 /// # Errors
 /// A flag out of range, with its range.
 pub fn check_simulate(a: &SimulateArgs) -> Result<(), InputError> {
-    if !(a.duration.is_finite() && (0.0..=1e7).contains(&a.duration)) {
-        return Err(InputError::Flag(format!(
-            "--duration {}: not allowed; allowed: 0..=1e7 (s)",
-            a.duration
-        )));
-    }
-    if !(a.every.is_finite() && a.every > 0.0) {
-        return Err(InputError::Flag(format!(
-            "--every {}: not allowed; allowed: > 0 (s)",
-            a.every
-        )));
-    }
+    let ok = a.duration.is_finite() && (0.0..=1e7).contains(&a.duration);
+    flag_value("--duration", a.duration, ok, "0..=1e7 (s)")?;
+    let ok = a.every.is_finite() && a.every > 0.0;
+    flag_value("--every", a.every, ok, "> 0 (s)")?;
     if a.duration / a.every > 1e8 {
         return Err(InputError::Flag(format!(
             "--every {}: too small for --duration {}; allowed: at most 1e8 samples (every >= duration / 1e8)",
@@ -402,25 +394,14 @@ pub fn check_simulate(a: &SimulateArgs) -> Result<(), InputError> {
 /// A flag out of range or a missing output, with what is allowed.
 pub fn render_output(a: &RenderArgs) -> Result<crate::headless::Output, InputError> {
     use crate::headless::Output;
-    if !(a.time.is_finite() && (0.0..=1e6).contains(&a.time)) {
-        return Err(InputError::Flag(format!(
-            "--time {}: not allowed; allowed: 0..=1e6 (s)",
-            a.time
-        )));
-    }
-    if !(a.fps.is_finite() && a.fps > 0.0 && a.fps <= 1000.0) {
-        return Err(InputError::Flag(format!(
-            "--fps {}: not allowed; allowed: > 0 and <= 1000",
-            a.fps
-        )));
-    }
+    let ok = a.time.is_finite() && (0.0..=1e6).contains(&a.time);
+    flag_value("--time", a.time, ok, "0..=1e6 (s)")?;
+    let ok = a.fps.is_finite() && a.fps > 0.0 && a.fps <= 1000.0;
+    flag_value("--fps", a.fps, ok, "> 0 and <= 1000")?;
     let frames = match a.frames {
         None => None,
-        Some(n) if (1..=100_000).contains(&n) => Some(n as u32),
         Some(n) => {
-            return Err(InputError::Flag(format!(
-                "--frames {n}: not allowed; allowed: 1..=100000"
-            )));
+            Some(flag_value("--frames", n, (1..=100_000).contains(&n), "1..=100000")? as u32)
         }
     };
     match (&a.out, &a.gif, frames) {

@@ -73,7 +73,8 @@ impl Plan {
     /// fixed-step integrator.
     #[must_use]
     pub fn runs(&self) -> usize {
-        self.angles_deg.len() * (1 + 4 * self.dts.len())
+        let stepped = Integrator::ALL.len() - 1;
+        self.angles_deg.len() * (1 + stepped * self.dts.len())
     }
 }
 

@@ -69,13 +69,11 @@ pub struct Prepared<'a> {
     boxes: Vec<Aabb>,
     /// Per object: its slot in `footprints` if it is a plane.
     plane_slot: Vec<Option<usize>>,
-    /// Per plane, per light: which objects can shadow which part of it; used only
-    /// when `shadow_culling` is on.
-    footprints: Vec<Vec<Option<Footprints>>>,
-    shadow_culling: bool,
-    /// Over `bounded`; used only when `use_bvh` is on.
-    bvh: Bvh,
-    use_bvh: bool,
+    /// Per plane, per light: which objects can shadow which part of it; built
+    /// only when shadow culling is turned on.
+    footprints: Option<Vec<Vec<Option<Footprints>>>>,
+    /// Over `bounded`; built only when the hierarchy is turned on.
+    bvh: Option<Bvh>,
     bounded: Vec<(usize, Aabb)>,
     group: Aabb,
     planes: Vec<usize>,
@@ -98,21 +96,9 @@ impl<'a> Prepared<'a> {
             }
         }
         let mut plane_slot = vec![None; scene.objects.len()];
-        let footprints = planes
-            .iter()
-            .enumerate()
-            .map(|(slot, &i)| {
-                plane_slot[i] = Some(slot);
-                let Shape::Plane { point, normal } = scene.objects[i].shape else {
-                    unreachable!("only planes are unbounded")
-                };
-                scene
-                    .lights
-                    .iter()
-                    .map(|l| Footprints::new(point, normal, l, &bounded))
-                    .collect()
-            })
-            .collect();
+        for (slot, &i) in planes.iter().enumerate() {
+            plane_slot[i] = Some(slot);
+        }
         let mut boxes = vec![Aabb::EMPTY; scene.objects.len()];
         for &(i, b) in &bounded {
             boxes[i] = b;
@@ -121,10 +107,8 @@ impl<'a> Prepared<'a> {
             scene,
             boxes,
             plane_slot,
-            footprints,
-            shadow_culling: false,
-            bvh: Bvh::new(&bounded.iter().map(|(_, b)| *b).collect::<Vec<_>>()),
-            use_bvh: false,
+            footprints: None,
+            bvh: None,
             geoms: scene.objects.iter().map(|o| Geom::new(&o.shape)).collect(),
             bounded,
             group,
@@ -183,8 +167,8 @@ impl<'a> Prepared<'a> {
     /// The nearest hit before `t_max`.
     #[must_use]
     pub fn closest(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
-        if self.use_bvh {
-            return self.closest_bvh(ray, t_max);
+        if let Some(bvh) = &self.bvh {
+            return self.closest_bvh(bvh, ray, t_max);
         }
         let mut best: Option<(f32, usize, Vec3)> = None;
         let consider = |i: usize, best: &mut Option<(f32, usize, Vec3)>| {
@@ -215,7 +199,7 @@ impl<'a> Prepared<'a> {
 
     /// [`Self::closest`] through the hierarchy: the same hit, since among equally
     /// near hits the one earliest in query order wins, as in the linear scan.
-    fn closest_bvh(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
+    fn closest_bvh(&self, bvh: &Bvh, ray: &Ray, t_max: f32) -> Option<Hit> {
         // (t, place in query order, object, normal)
         let best: Cell<Option<(f32, usize, usize, Vec3)>> = Cell::new(None);
         let limit = || best.get().map_or(t_max, |b| b.0);
@@ -236,7 +220,7 @@ impl<'a> Prepared<'a> {
         let inv = ray.dir.recip();
         if self.group.hit(ray, inv, t_max) {
             let first = self.planes.len();
-            self.bvh.traverse(ray, inv, limit, |k| {
+            bvh.traverse(ray, inv, limit, |k| {
                 let (i, b) = self.bounded[k];
                 if b.hit(ray, inv, limit()) {
                     consider(i, first + k);
@@ -255,7 +239,7 @@ impl<'a> Prepared<'a> {
     /// object's box, the reference).
     #[must_use]
     pub fn with_bvh(mut self, on: bool) -> Self {
-        self.use_bvh = on;
+        self.bvh = on.then(|| Bvh::new(&self.bounded.iter().map(|(_, b)| *b).collect::<Vec<_>>()));
         self
     }
 
@@ -269,7 +253,22 @@ impl<'a> Prepared<'a> {
     /// tests every object, the reference).
     #[must_use]
     pub fn with_shadow_culling(mut self, on: bool) -> Self {
-        self.shadow_culling = on;
+        let scene = self.scene;
+        self.footprints = on.then(|| {
+            self.planes
+                .iter()
+                .map(|&i| {
+                    let Shape::Plane { point, normal } = scene.objects[i].shape else {
+                        unreachable!("only planes are unbounded")
+                    };
+                    scene
+                        .lights
+                        .iter()
+                        .map(|l| Footprints::new(point, normal, l, &self.bounded))
+                        .collect()
+                })
+                .collect()
+        });
         self
     }
 
@@ -283,8 +282,7 @@ impl<'a> Prepared<'a> {
             .get(from)
             .copied()
             .flatten()
-            .filter(|_| self.shadow_culling)
-            .and_then(|slot| self.footprints[slot][light].as_ref());
+            .and_then(|slot| self.footprints.as_ref()?[slot][light].as_ref());
         self.occluded_by(ray, t_max, footprints)
     }
 
@@ -301,9 +299,12 @@ impl<'a> Prepared<'a> {
             return false;
         }
         let test = |i: usize| self.boxes[i].hit(ray, inv, t_max) && blocks(i);
-        match footprints.and_then(|fp| fp.candidates(ray.origin)) {
-            Some((cell, always)) => cell.iter().chain(always).any(|&i| test(i)),
-            None if self.use_bvh => self.bvh.traverse(
+        match (
+            footprints.and_then(|fp| fp.candidates(ray.origin)),
+            &self.bvh,
+        ) {
+            (Some((cell, always)), _) => cell.iter().chain(always).any(|&i| test(i)),
+            (None, Some(bvh)) => bvh.traverse(
                 ray,
                 inv,
                 || t_max,
@@ -312,7 +313,7 @@ impl<'a> Prepared<'a> {
                     b.hit(ray, inv, t_max) && blocks(i)
                 },
             ),
-            None => self
+            (None, None) => self
                 .bounded
                 .iter()
                 .any(|&(i, ref b)| b.hit(ray, inv, t_max) && blocks(i)),

@@ -273,17 +273,33 @@ pub fn render(scene: &Scene) -> Image {
     Frame::new(scene, RenderOptions::FAST, false).image(true).0
 }
 
-/// The scene with the moving objects' shapes left out: while it stays the same, a
-/// pixel whose rays never entered the motion box keeps its bytes.
-fn static_part(scene: &Scene) -> Scene {
-    let mut s = scene.clone();
-    for o in s.objects.iter_mut().filter(|o| o.moving) {
-        o.shape = super::scene::Shape::Sphere {
-            centre: Vec3::ZERO,
-            radius: 0.0,
-        };
-    }
-    s
+/// Whether `a` and `b` differ at most in the shapes of their moving objects: then
+/// a pixel whose rays met no moving object keeps its bytes. Every field is named,
+/// so a new one cannot be forgotten here.
+fn same_but_motion(a: &Scene, b: &Scene) -> bool {
+    let Scene {
+        objects,
+        lights,
+        camera,
+        background,
+        size,
+        max_depth,
+        samples,
+        adaptive,
+        motion_bounds,
+    } = a;
+    objects.len() == b.objects.len()
+        && objects.iter().zip(&b.objects).all(|(o, p)| {
+            o.moving == p.moving && o.material == p.material && (o.moving || o.shape == p.shape)
+        })
+        && *lights == b.lights
+        && *camera == b.camera
+        && *background == b.background
+        && *size == b.size
+        && *max_depth == b.max_depth
+        && *samples == b.samples
+        && *adaptive == b.adaptive
+        && *motion_bounds == b.motion_bounds
 }
 
 /// Renders frame after frame, re-tracing only what motion changed. Each pixel
@@ -296,7 +312,6 @@ fn static_part(scene: &Scene) -> Scene {
 /// size, a static object) brings a full frame.
 #[derive(Debug, Default)]
 pub struct Incremental {
-    key: Option<Scene>,
     /// The scene of the last frame.
     last: Option<Scene>,
     image: Option<Image>,
@@ -335,14 +350,16 @@ impl Incremental {
 
     /// Renders `scene` on the current rayon pool and returns the picture.
     pub fn render(&mut self, scene: &Scene) -> &Image {
-        let key = static_part(scene);
         let frame = Frame::new(scene, RenderOptions::FAST, true);
         // With adaptive anti-aliasing a pixel's sampling depends on its neighbours'
         // colours, which motion changes: those frames are traced in full.
         let reuse = scene.motion_bounds.is_some()
             && scene.adaptive.is_none_or(|_| scene.samples <= 1)
             && self.image.is_some()
-            && self.key.as_ref() == Some(&key);
+            && self
+                .last
+                .as_ref()
+                .is_some_and(|l| same_but_motion(l, scene));
         self.full = !reuse;
         match (reuse, frame.motion, self.last.as_ref()) {
             (true, Some(grid), Some(last)) => {
@@ -371,7 +388,6 @@ impl Incremental {
                 self.retraced = masks.len();
                 self.masks = masks;
                 self.image = Some(img);
-                self.key = Some(key);
                 self.full = true;
             }
         }
