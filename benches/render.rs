@@ -13,7 +13,7 @@ fn frame(c: &mut Criterion) {
     world.show_at(0.5);
     let scene = world.scene().clone();
     c.bench_function("render 1200x600 default scene", |b| {
-        b.iter(|| trace::render(std::hint::black_box(&scene)))
+        b.iter(|| trace::render(std::hint::black_box(&scene)));
     });
     // The skips against the reference, serially: their ratio is what they save.
     for (name, options) in [
@@ -21,7 +21,7 @@ fn frame(c: &mut Criterion) {
         ("fast", trace::RenderOptions::FAST),
     ] {
         c.bench_function(&format!("render 1200x600 serial {name}"), |b| {
-            b.iter(|| trace::render_serial_with(std::hint::black_box(&scene), options))
+            b.iter(|| trace::render_serial_with(std::hint::black_box(&scene), options));
         });
     }
 }
@@ -45,7 +45,7 @@ fn hud(c: &mut Criterion) {
                 height: 600,
             };
             canvas.panel(0, std::hint::black_box(&lines))
-        })
+        });
     });
 }
 

@@ -81,7 +81,7 @@ impl GifWriter {
         })
     }
 
-    /// Appends a frame (quantised to 256 colours with NeuQuant).
+    /// Appends a frame (quantised to 256 colours with `NeuQuant`).
     ///
     /// # Errors
     /// When writing fails.

@@ -5,7 +5,6 @@ use crate::config::Config;
 use crate::export::{self, GifWriter, WriteError};
 use crate::scene::CradleWorld;
 use crate::trace::{self, Image};
-use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
 
 /// What to render.
@@ -46,69 +45,55 @@ pub fn render(config: &Config, start: f64, output: &Output) -> anyhow::Result<Ve
             written.push(path.clone());
         }
         Output::Sequence { dir, frames, fps } => {
-            let progress = Progress::new(*frames);
+            let progress = crate::bench::progress_bar(u64::from(*frames), "frames");
             for n in 0..*frames {
                 let path = dir.join(format!("frame_{n:04}.png"));
                 export::write_png(&path, &frame_at(start + f64::from(n) / fps))?;
                 written.push(path);
-                progress.tick(n + 1);
+                progress.inc(1);
             }
-            progress.done();
+            progress.finish_and_clear();
         }
         Output::Gif { path, frames, fps } => {
             let (w, h) = (config.render.width, config.render.height);
             let mut gif = GifWriter::create(path, w, h, *fps)?;
-            let progress = Progress::new(*frames);
+            let progress = crate::bench::progress_bar(u64::from(*frames), "frames");
             for n in 0..*frames {
                 gif.push(&frame_at(start + f64::from(n) / fps))?;
-                progress.tick(n + 1);
+                progress.inc(1);
             }
-            progress.done();
+            progress.finish_and_clear();
             written.push(path.clone());
         }
     }
     Ok(written)
 }
 
+/// `render`: logs what it makes, renders it, and logs what it wrote.
+///
+/// # Errors
+/// As [`render`].
+pub fn run(config: &Config, start: f64, output: &Output) -> anyhow::Result<()> {
+    tracing::info!(
+        "rendering {} at {}x{}",
+        describe(output),
+        config.render.width,
+        config.render.height
+    );
+    let clock = std::time::Instant::now();
+    let files = render(config, start, output)?;
+    tracing::info!(
+        "wrote {} file(s) in {:.2} s",
+        files.len(),
+        clock.elapsed().as_secs_f64()
+    );
+    Ok(())
+}
+
 /// Whether an error is a path the user gave that cannot be written (exit code 2).
 #[must_use]
 pub fn is_bad_path(e: &anyhow::Error) -> bool {
     e.downcast_ref::<WriteError>().is_some()
-}
-
-/// A one-line progress bar on stderr, drawn only when stdout is a terminal.
-struct Progress {
-    total: u32,
-    live: bool,
-}
-
-impl Progress {
-    fn new(total: u32) -> Self {
-        Self {
-            total,
-            live: std::io::stdout().is_terminal() && std::io::stderr().is_terminal(),
-        }
-    }
-
-    fn tick(&self, done: u32) {
-        if self.live {
-            let width = 30;
-            let filled = (done as usize * width) / self.total.max(1) as usize;
-            eprint!(
-                "\r[{}{}] {done}/{} frames",
-                "#".repeat(filled),
-                " ".repeat(width - filled),
-                self.total
-            );
-            std::io::stderr().flush().ok();
-        }
-    }
-
-    fn done(&self) {
-        if self.live {
-            eprintln!();
-        }
-    }
 }
 
 /// The folder and frames of a sequence, for logging.

@@ -15,15 +15,13 @@
 //! - [`app`]: the window (winit + pixels), keys, HUD and hot reload.
 //! - [`simulate`]: the `simulate` subcommand's JSON Lines.
 
-#![forbid(unsafe_code)]
-
 pub mod app;
 pub mod bench;
 pub mod cli;
 pub mod config;
 pub mod export;
 pub mod headless;
-pub mod physics;
+pub use cradle_physics as physics;
 pub mod scene;
 pub mod simulate;
-pub mod trace;
+pub use cradle_trace as trace;

@@ -4,12 +4,12 @@
 //! product, never a running sum) up to the duration; last `{"summary":{..}}`.
 
 use crate::config::Config;
-use serde_json::json;
+use serde::Serialize;
 use std::io::{self, Write};
 use std::time::Instant;
 
 /// What a run measured, as printed in the summary line.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Summary {
     /// Simulated seconds.
     pub duration: f64,
@@ -23,6 +23,48 @@ pub struct Summary {
     pub max_energy_rel_error: f64,
     /// Wall-clock seconds spent.
     pub wall_seconds: f64,
+}
+
+/// The run's parameters, as printed in the first line (SI units).
+#[derive(Debug, Serialize)]
+struct Params<'a> {
+    balls: usize,
+    radius: f64,
+    length: f64,
+    gap: f64,
+    gravity: f64,
+    mass: f64,
+    lift: usize,
+    angle_deg: f64,
+    contact: &'a str,
+    integrator: &'a str,
+    dt: f64,
+    restitution: f64,
+    density: f64,
+}
+
+/// One sample line.
+#[derive(Debug, Serialize)]
+struct Sample<'a> {
+    t: f64,
+    theta: &'a [f64],
+    omega: &'a [f64],
+    energy: f64,
+    collisions: u64,
+}
+
+/// The first and last lines: `{"params":{..}}` and `{"summary":{..}}`.
+#[derive(Debug, Serialize)]
+#[serde(rename_all = "lowercase")]
+enum Framing<'a> {
+    Params(Params<'a>),
+    Summary(&'a Summary),
+}
+
+/// Writes `value` as one JSON line.
+fn line(out: &mut impl Write, value: &impl Serialize) -> io::Result<()> {
+    serde_json::to_writer(&mut *out, value)?;
+    writeln!(out)
 }
 
 /// Number of samples `n = 0..=count` with `n * every <= duration` (within 1e-9).
@@ -43,14 +85,22 @@ pub fn simulate(
 ) -> io::Result<Summary> {
     let start = Instant::now();
     let p = config.cradle_params();
-    let params = json!({"params": {
-        "balls": p.balls, "radius": p.radius, "length": p.length, "gap": p.gap,
-        "gravity": p.gravity, "mass": p.mass, "lift": config.start.lift,
-        "angle_deg": config.start.angle_deg, "contact": config.contact.model.name(),
-        "integrator": config.physics.integrator.name(), "dt": config.physics.dt,
-        "restitution": p.restitution, "density": config.cradle.density,
-    }});
-    writeln!(out, "{params}")?;
+    let params = Params {
+        balls: p.balls,
+        radius: p.radius,
+        length: p.length,
+        gap: p.gap,
+        gravity: p.gravity,
+        mass: p.mass,
+        lift: config.start.lift,
+        angle_deg: config.start.angle_deg,
+        contact: config.contact.model.name(),
+        integrator: config.physics.integrator.name(),
+        dt: config.physics.dt,
+        restitution: p.restitution,
+        density: config.cradle.density,
+    };
+    line(out, &Framing::Params(params))?;
     let mut cradle = config.build_cradle();
     let e0 = cradle.initial_energy();
     let (mut max_err, mut e_last, mut collisions) = (0.0_f64, e0, 0);
@@ -61,8 +111,14 @@ pub fn simulate(
         max_err = max_err.max(cradle.energy_rel_error(&s).abs());
         e_last = e;
         collisions = s.collisions;
-        let line = json!({"t": t, "theta": s.theta, "omega": s.omega, "energy": e, "collisions": s.collisions});
-        writeln!(out, "{line}")?;
+        let sample = Sample {
+            t,
+            theta: &s.theta,
+            omega: &s.omega,
+            energy: e,
+            collisions: s.collisions,
+        };
+        line(out, &sample)?;
     }
     let summary = Summary {
         duration,
@@ -72,12 +128,7 @@ pub fn simulate(
         max_energy_rel_error: max_err,
         wall_seconds: start.elapsed().as_secs_f64(),
     };
-    let line = json!({"summary": {
-        "duration": summary.duration, "collisions": summary.collisions,
-        "energy_initial": summary.energy_initial, "energy_final": summary.energy_final,
-        "max_energy_rel_error": summary.max_energy_rel_error, "wall_seconds": summary.wall_seconds,
-    }});
-    writeln!(out, "{line}")?;
+    line(out, &Framing::Summary(&summary))?;
     out.flush()?;
     Ok(summary)
 }

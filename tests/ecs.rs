@@ -5,7 +5,7 @@ use bevy_ecs::prelude::*;
 use glam::DVec3;
 use newtons_cradle::config::Config;
 use newtons_cradle::scene::components::{Ball, Pendulum, Rod, Shape, Strand, StrandOf, Transform};
-use newtons_cradle::scene::{Control, CradleWorld, SimState};
+use newtons_cradle::scene::{CradleWorld, SimState};
 use newtons_cradle::trace;
 
 fn transforms<F: bevy_ecs::query::QueryFilter>(w: &mut CradleWorld) -> Vec<Transform> {
@@ -77,7 +77,7 @@ fn running_world_moves_balls_and_keeps_strings_attached() {
     config.start.angle_deg = 60.0;
     config.cradle.gap = 0.002;
     let mut w = CradleWorld::new(&config);
-    w.send(Control::TogglePause);
+    w.set_running(true);
     w.frame(0.0);
     let start = transforms::<With<Ball>>(&mut w);
     let radius = config.cradle.radius;
@@ -129,7 +129,7 @@ fn running_world_moves_balls_and_keeps_strings_attached() {
 }
 
 #[test]
-fn reset_returns_to_the_start_and_toggle_pauses() {
+fn reset_returns_to_the_start_and_pause_stops_the_clock() {
     let mut config = Config::default();
     config.start.running = true;
     let mut w = CradleWorld::new(&config);
@@ -139,13 +139,13 @@ fn reset_returns_to_the_start_and_toggle_pauses() {
         w.frame(1.0 / 60.0);
     }
     assert_ne!(transforms::<With<Ball>>(&mut w), start);
-    w.send(Control::TogglePause);
+    w.set_running(false);
     w.frame(1.0 / 60.0);
     assert_eq!(w.state(), SimState::Paused);
     let paused = transforms::<With<Ball>>(&mut w);
     w.frame(1.0 / 60.0);
     assert_eq!(transforms::<With<Ball>>(&mut w), paused);
-    w.send(Control::Reset);
+    w.respawn(&config);
     w.frame(1.0 / 60.0);
     assert_eq!(
         w.state(),

@@ -5,7 +5,8 @@ use glam::Vec3;
 use newtons_cradle::config::Config;
 use newtons_cradle::scene::CradleWorld;
 use newtons_cradle::trace::geometry::{Ray, hit_cylinder, hit_plane, hit_sphere};
-use newtons_cradle::trace::shade::{Motion, radiance_bound, trace};
+use newtons_cradle::trace::motion::Motion;
+use newtons_cradle::trace::shade::{radiance_bound, trace};
 use newtons_cradle::trace::{self, Camera, Light, Material, Object, Prepared, Scene, Shape};
 
 /// f32 arithmetic on metre-sized numbers: a few ulps of 1 m.
@@ -217,11 +218,7 @@ fn a_lone_sphere_covers_its_projected_disc() {
         (w, h),
     );
     let img = trace::render_serial(&s);
-    let bg = [
-        trace::render::srgb8(0.1),
-        trace::render::srgb8(0.2),
-        trace::render::srgb8(0.3),
-    ];
+    let bg = [trace::srgb8(0.1), trace::srgb8(0.2), trace::srgb8(0.3)];
     let covered = img.rgba.chunks_exact(4).filter(|p| p[..3] != bg).count() as f64;
     // Silhouette: a circle of angular radius asin(R/D) about the axis; on the image
     // plane at distance 1 its radius is R / sqrt(D^2 - R^2), in pixels times
@@ -308,9 +305,34 @@ fn parallel_render_equals_serial_byte_for_byte() {
     }
 }
 
+/// Where `point` lands in the view of `cam` for a `width x height` picture, as
+/// `(x, y)` in -1..=1 across the picture, and its depth along the line of sight:
+/// an f64 projection of our own, independent of the tracer's.
+fn view_coords(
+    cam: &newtons_cradle::config::CameraConfig,
+    width: u32,
+    height: u32,
+    point: glam::DVec3,
+) -> (f64, f64, f64) {
+    use glam::DVec3;
+    let eye = DVec3::from(cam.position);
+    let fwd = (DVec3::from(cam.look_at) - eye).normalize();
+    let right = fwd.cross(DVec3::Y).normalize();
+    let up = right.cross(fwd);
+    let half_h = (cam.fov_deg.to_radians() / 2.0).tan();
+    let half_w = half_h * f64::from(width) / f64::from(height);
+    let v = point - eye;
+    let depth = v.dot(fwd);
+    (
+        v.dot(right) / depth / half_w,
+        v.dot(up) / depth / half_h,
+        depth,
+    )
+}
+
 #[test]
 fn the_whole_cradle_is_in_view_at_the_default_camera() {
-    use newtons_cradle::scene::spawn::{fitted_camera, frame_corners, view_coords};
+    use newtons_cradle::scene::view::{fitted_camera, frame_corners};
     // The default camera sees the default cradle as configured; with more balls
     // `camera.fit` moves it back until the frame is in view again.
     let default = Config::default();
@@ -337,7 +359,7 @@ fn the_whole_cradle_is_in_view_at_the_default_camera() {
 
 #[test]
 fn srgb_bytes_round_the_standard_curve_to_nearest() {
-    use newtons_cradle::trace::render::srgb8;
+    use newtons_cradle::trace::srgb8;
     // Against the IEC 61966-2-1 formula evaluated in f64, away from the decision
     // points (a value within 1e-6 of one may round either way in f32).
     for i in 0..=10_000 {
@@ -526,7 +548,7 @@ fn adaptive_parallel_and_incremental_equal_serial() {
         c
     };
     let mut world = CradleWorld::new(&config);
-    world.send(newtons_cradle::scene::Control::TogglePause);
+    world.set_running(true);
     let mut inc = trace::Incremental::new();
     for threads in [1u32, 2, 3] {
         let pool = trace::pool(threads as usize).unwrap();

@@ -12,31 +12,24 @@
 use super::median;
 use crate::physics::params::lifted_start;
 use crate::physics::{Cradle, CradleParams, Flight, Integrator};
-use serde_json::json;
+use serde::Serialize;
+use std::io::Write;
+use std::path::Path;
 
-/// One point of the diagram.
-#[derive(Debug, Clone, PartialEq)]
+/// One point of the diagram; as JSON, one line of the DESIGN.md contract (`dt`
+/// null for `exact`, which has no step).
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Point {
-    /// Lift angle (degrees).
-    pub angle_deg: f64,
     /// Integrator.
     pub integrator: Integrator,
+    /// Lift angle (degrees).
+    pub angle_deg: f64,
     /// Step (s); `None` for the exact engine, which has none.
     pub dt: Option<f64>,
     /// Largest angle error over the run (rad).
     pub error: f64,
     /// CPU seconds to simulate the run (median of repeats when short).
     pub cpu_seconds: f64,
-}
-
-impl Point {
-    /// The row as the JSON Lines contract of DESIGN.md (`dt` null for `exact`).
-    #[must_use]
-    pub fn json(&self) -> String {
-        json!({"integrator": self.integrator.name(), "angle_deg": self.angle_deg, "dt": self.dt,
-               "error": self.error, "cpu_seconds": self.cpu_seconds})
-        .to_string()
-    }
 }
 
 /// What to run.
@@ -192,7 +185,7 @@ pub fn cheapest_within(points: &[Point], angle_deg: f64, error: f64) -> Option<&
 ///
 /// # Errors
 /// When the file cannot be written.
-pub fn plot(points: &[Point], plan: &Plan, path: &std::path::Path) -> anyhow::Result<()> {
+pub fn plot(points: &[Point], plan: &Plan, path: &Path) -> anyhow::Result<()> {
     use super::plot::{Axes, Panel, Series, log_log_svg};
     let panels: Vec<Panel> = plan
         .angles_deg
@@ -221,4 +214,67 @@ pub fn plot(points: &[Point], plan: &Plan, path: &std::path::Path) -> anyhow::Re
             legend_lower_left: false,
         },
     )
+}
+
+/// `bench physics`: rows on `out` as they finish (a table, or JSON Lines), then the
+/// observed orders, and the diagram at `plot`.
+///
+/// # Errors
+/// When `out` or the plot cannot be written.
+pub fn report(
+    plan: &Plan,
+    json: bool,
+    plot_to: Option<&Path>,
+    out: &mut impl Write,
+) -> anyhow::Result<()> {
+    if !json {
+        writeln!(
+            out,
+            "5 balls, 1 lifted, {} s simulated; error: max angle error (rad) against the closed form",
+            plan.duration
+        )?;
+        writeln!(out, "angle  integrator  dt (s)     error (rad)  CPU (s)")?;
+    }
+    let bar = super::progress_bar(plan.runs() as u64, "runs");
+    let mut written = Ok(());
+    let points = run(plan, |pt| {
+        let line = if json {
+            serde_json::to_string(pt).expect("a point of numbers and names serializes")
+        } else {
+            format!(
+                "{:>5}  {:<10}  {:<9}  {:>11.3e}  {:>9.3e}",
+                pt.angle_deg,
+                pt.integrator.name(),
+                pt.dt.map_or("-".into(), |d| format!("{d:.2e}")),
+                pt.error,
+                pt.cpu_seconds
+            )
+        };
+        if written.is_ok() {
+            written = bar.suspend(|| writeln!(out, "{line}"));
+        }
+        bar.inc(1);
+    });
+    bar.finish_and_clear();
+    written?;
+    if !json {
+        for &a in &plan.angles_deg {
+            writeln!(
+                out,
+                "observed order at {a} deg (between consecutive steps, finest last):"
+            )?;
+            for m in &Integrator::ALL[1..] {
+                let o: Vec<String> = orders(&points, *m, a)
+                    .iter()
+                    .map(|(_, o)| format!("{o:.2}"))
+                    .collect();
+                writeln!(out, "  {:<9} {}", m.name(), o.join(" "))?;
+            }
+        }
+    }
+    if let Some(path) = plot_to {
+        plot(&points, plan, path)?;
+        tracing::info!("wrote {}", path.display());
+    }
+    Ok(())
 }

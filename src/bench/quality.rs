@@ -5,9 +5,11 @@
 
 use super::median;
 use crate::config::Config;
-use crate::scene::{Control, CradleWorld};
+use crate::scene::CradleWorld;
 use crate::trace::{self, Image, Scene};
-use serde_json::json;
+use serde::Serialize;
+use std::io::Write;
+use std::path::Path;
 use std::time::Instant;
 
 /// An anti-aliasing mode.
@@ -48,8 +50,9 @@ pub const MODES: [Mode; 4] = [
 /// Reflection depths compared.
 pub const DEPTHS: std::ops::RangeInclusive<u32> = 0..=5;
 
-/// One measured frame.
-#[derive(Debug, Clone, PartialEq)]
+/// One measured frame; as JSON, one line of `bench render-quality --json` (an
+/// infinite PSNR, an exact match, is written as null).
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Row {
     /// Anti-aliasing mode.
     pub mode: &'static str,
@@ -63,17 +66,6 @@ pub struct Row {
     pub psnr: f64,
     /// PSNR against 16 samples per pixel at the same depth (dB).
     pub psnr_vs_16: f64,
-}
-
-impl Row {
-    /// The row as JSON (an infinite PSNR is written as null).
-    #[must_use]
-    pub fn json(&self) -> String {
-        let db = |v: f64| v.is_finite().then_some(v);
-        json!({"mode": self.mode, "depth": self.depth, "ms_median": self.ms_median,
-               "rmse": self.rmse, "psnr": db(self.psnr), "psnr_vs_16": db(self.psnr_vs_16)})
-        .to_string()
-    }
 }
 
 /// RMSE (8-bit levels) of `a` against `b` over the RGB channels.
@@ -119,7 +111,7 @@ pub fn run(
 ) -> anyhow::Result<Vec<Row>> {
     let pool = trace::pool(threads)?;
     let mut world = CradleWorld::new(config);
-    world.send(Control::TogglePause);
+    world.set_running(true);
     world.show_at(0.5);
     let scene = world.scene().clone();
     let reference = pool.install(|| trace::render(&with(&scene, 64, None, 8)));
@@ -162,7 +154,7 @@ pub fn run(
 ///
 /// # Errors
 /// When the file cannot be written.
-pub fn plot(rows: &[Row], path: &std::path::Path, title: &str) -> anyhow::Result<()> {
+pub fn plot(rows: &[Row], path: &Path, title: &str) -> anyhow::Result<()> {
     use super::plot::{Axes, Panel, Series, log_log_svg};
     let series = MODES
         .iter()
@@ -187,4 +179,60 @@ pub fn plot(rows: &[Row], path: &std::path::Path, title: &str) -> anyhow::Result
             legend_lower_left: true,
         },
     )
+}
+
+/// `bench render-quality`: the table (or JSON Lines) on `out`, a row as each
+/// finishes, and the plot at `plot_to`.
+///
+/// # Errors
+/// When a thread pool cannot be built, or `out` or the plot cannot be written.
+pub fn report(
+    config: &Config,
+    frames: u32,
+    json: bool,
+    plot_to: Option<&Path>,
+    out: &mut impl Write,
+) -> anyhow::Result<()> {
+    let threads = config.render.threads;
+    let title = format!(
+        "{}x{}, {} threads, t = 0.5 s",
+        config.render.width,
+        config.render.height,
+        if threads == 0 {
+            "all".to_owned()
+        } else {
+            threads.to_string()
+        }
+    );
+    if !json {
+        writeln!(
+            out,
+            "{title}; reference: 64 spp, depth 8; adaptive threshold {}",
+            config.render.adaptive_threshold
+        )?;
+        writeln!(
+            out,
+            "mode         depth  ms/frame    RMSE  PSNR dB  PSNR vs 16 spp"
+        )?;
+    }
+    let mut written = Ok(());
+    let rows = run(config, threads, frames, |r| {
+        let line = if json {
+            serde_json::to_string(r).expect("a row of numbers and names serializes")
+        } else {
+            format!(
+                "{:<11}  {:>5}  {:>8.1}  {:>6.3}  {:>7.2}  {:>14.2}",
+                r.mode, r.depth, r.ms_median, r.rmse, r.psnr, r.psnr_vs_16
+            )
+        };
+        if written.is_ok() {
+            written = writeln!(out, "{line}");
+        }
+    })?;
+    written?;
+    if let Some(path) = plot_to {
+        plot(&rows, path, &title)?;
+        tracing::info!("wrote {}", path.display());
+    }
+    Ok(())
 }

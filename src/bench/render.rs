@@ -4,13 +4,15 @@
 
 use super::median;
 use crate::config::Config;
-use crate::scene::{Control, CradleWorld};
+use crate::scene::CradleWorld;
 use crate::trace;
-use serde_json::json;
+use serde::Serialize;
+use std::io::Write;
 use std::time::Instant;
 
-/// One row of the table.
-#[derive(Debug, Clone, PartialEq)]
+/// One row of the table; as JSON, one line of the DESIGN.md contract (its keys in
+/// this order).
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Row {
     /// Worker threads.
     pub threads: usize,
@@ -26,16 +28,6 @@ pub struct Row {
     pub frames: u32,
     /// Mean share of the pixels traced per timed frame (1 for full frames).
     pub traced: f64,
-}
-
-impl Row {
-    /// The row as the JSON Lines contract of DESIGN.md.
-    #[must_use]
-    pub fn json(&self) -> String {
-        json!({"threads": self.threads, "mode": self.mode, "width": self.width, "height": self.height,
-               "ms_median": self.ms_median, "frames": self.frames, "traced": self.traced})
-        .to_string()
-    }
 }
 
 /// Times `frames` frames of the swinging cradle (60 fps of simulated time, after two
@@ -54,7 +46,7 @@ pub fn bench_render(
         let pool = trace::pool(n)?;
         for mode in ["full", "incremental"] {
             let mut world = CradleWorld::new(config);
-            world.send(Control::TogglePause);
+            world.set_running(true);
             let mut inc = trace::Incremental::new();
             let mut times = Vec::new();
             let mut traced = 0.0;
@@ -91,4 +83,49 @@ pub fn bench_render(
         }
     }
     Ok(rows)
+}
+
+/// `bench render`: the table (or JSON Lines) on `out`, a row as each finishes.
+///
+/// # Errors
+/// When a thread pool cannot be built or `out` cannot be written.
+pub fn report(
+    config: &Config,
+    threads: &[usize],
+    frames: u32,
+    json: bool,
+    out: &mut impl Write,
+) -> anyhow::Result<()> {
+    if !json {
+        writeln!(
+            out,
+            "{}x{}, {} balls, median of {frames} frames of a swinging cradle",
+            config.render.width, config.render.height, config.cradle.balls
+        )?;
+        writeln!(
+            out,
+            "threads  mode         ms/frame  vs 1 thread full  pixels traced"
+        )?;
+    }
+    let mut base = None;
+    let mut written = Ok(());
+    bench_render(config, threads, frames, |row| {
+        let line = if json {
+            serde_json::to_string(row).expect("a row of numbers and names serializes")
+        } else {
+            let b = *base.get_or_insert(row.ms_median);
+            format!(
+                "{:>7}  {:<11}  {:>8.2}  {:>15.2}x  {:>12.1}%",
+                row.threads,
+                row.mode,
+                row.ms_median,
+                b / row.ms_median,
+                100.0 * row.traced
+            )
+        };
+        if written.is_ok() {
+            written = writeln!(out, "{line}");
+        }
+    })?;
+    Ok(written?)
 }

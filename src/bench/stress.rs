@@ -6,7 +6,8 @@
 
 use crate::config::Config;
 use crate::physics::{Cradle, CradleParams, Integrator, hertz};
-use serde_json::json;
+use serde::Serialize;
+use std::io::Write;
 
 /// One stress case.
 #[derive(Debug, Clone)]
@@ -38,10 +39,11 @@ pub struct Scenario {
     pub rest_by: Option<f64>,
 }
 
-/// What one scenario did.
-#[derive(Debug, Clone, PartialEq)]
+/// What one scenario did; as JSON, one line of `bench stress --json`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Report {
     /// Scenario name.
+    #[serde(rename = "scenario")]
     pub name: String,
     /// Simulated seconds.
     pub duration: f64,
@@ -68,17 +70,6 @@ pub struct Report {
 }
 
 impl Report {
-    /// The row as JSON.
-    #[must_use]
-    pub fn json(&self) -> String {
-        json!({"scenario": self.name, "duration": self.duration, "impacts": self.impacts,
-               "finite": self.finite, "energy_drift": self.energy_drift,
-               "max_overlap": self.max_overlap, "max_angle": self.max_angle,
-               "angle_bound": self.angle_bound, "first_strike_energy": self.first_strike_energy,
-               "late_impacts": self.late_impacts, "cpu_seconds": self.cpu_seconds})
-        .to_string()
-    }
-
     /// What went wrong, checked against the scenario's limits; empty when it passed.
     #[must_use]
     pub fn failures(&self, s: &Scenario) -> Vec<String> {
@@ -142,6 +133,10 @@ fn base(balls: usize) -> CradleParams {
 
 /// The suite, with every duration multiplied by `scale`.
 #[must_use]
+#[expect(
+    clippy::too_many_lines,
+    reason = "one entry per scenario: a list, not logic"
+)]
 pub fn scenarios(scale: f64) -> Vec<Scenario> {
     let case =
         |name: &str, params: CradleParams, lift: usize, angle_deg: f64, duration: f64| Scenario {
@@ -338,4 +333,53 @@ pub fn run(s: &Scenario) -> Report {
     report.late_impacts = at_rest_by.map_or(0, |n| report.impacts - n);
     report.cpu_seconds = super::thread_cpu_seconds() - start;
     report
+}
+
+/// `bench stress`: every scenario of the suite, `scale` times longer, a row on
+/// `out` as each finishes.
+///
+/// # Errors
+/// When `out` cannot be written, or a scenario fails its checks (listed).
+pub fn report(scale: f64, json: bool, out: &mut impl Write) -> anyhow::Result<()> {
+    if !json {
+        writeln!(
+            out,
+            "stress suite at {scale}x the test's durations (exact engine)"
+        )?;
+        writeln!(
+            out,
+            "{:<36} {:>8} {:>9} {:>10} {:>10} {:>9} {:>7}",
+            "scenario", "sim s", "impacts", "drift", "overlap m", "angle/max", "CPU s"
+        )?;
+    }
+    let mut failed = Vec::new();
+    for s in scenarios(scale) {
+        let r = run(&s);
+        if json {
+            writeln!(out, "{}", serde_json::to_string(&r)?)?;
+        } else {
+            writeln!(
+                out,
+                "{:<36} {:>8.0} {:>9} {:>10.2e} {:>10.2e} {:>9.6} {:>7.2}",
+                r.name,
+                r.duration,
+                r.impacts,
+                r.energy_drift,
+                r.max_overlap.max(0.0),
+                r.max_angle / r.angle_bound,
+                r.cpu_seconds
+            )?;
+        }
+        failed.extend(
+            r.failures(&s)
+                .into_iter()
+                .map(|f| format!("{}: {f}", s.name)),
+        );
+    }
+    anyhow::ensure!(
+        failed.is_empty(),
+        "stress suite failed:\n{}",
+        failed.join("\n")
+    );
+    Ok(())
 }

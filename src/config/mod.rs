@@ -14,6 +14,9 @@ pub use validate::FieldError;
 use crate::physics::{CradleParams, Integrator};
 use serde::{Deserialize, Serialize};
 
+/// The most balls a cradle may have (`cradle.balls`, `--balls`, the Up key).
+pub const MAX_BALLS: usize = 200;
+
 /// A linear RGB colour, each channel 0..=1.
 pub type Rgb = [f64; 3];
 /// A point or direction in metres: x to the right along the cradle, y up, z towards

@@ -2,7 +2,7 @@
 //! (`cradle.balls`, `lights[1].intensity`) and what is allowed, so that the loader
 //! can point at the line and the CLI at the flag.
 
-use super::{Config, ContactModel, LightConfig, MaterialConfig, Rgb, Vec3};
+use super::{Config, ContactModel, LightConfig, MAX_BALLS, MaterialConfig, Rgb, Vec3};
 use std::fmt;
 
 /// One invalid field.
@@ -92,11 +92,15 @@ impl Config {
     ///
     /// # Errors
     /// The list of invalid fields, when there is any.
+    #[expect(
+        clippy::too_many_lines,
+        reason = "one check per config field, in the order of the asset"
+    )]
     pub fn validate(&self) -> Result<(), Vec<FieldError>> {
         let mut c = Checker(Vec::new());
         let k = &self.cradle;
-        if !(1..=200).contains(&k.balls) {
-            c.fail("cradle.balls", k.balls, "1..=200");
+        if !(1..=MAX_BALLS).contains(&k.balls) {
+            c.fail("cradle.balls", k.balls, &format!("1..={MAX_BALLS}"));
         }
         c.num("cradle.radius", k.radius, k.radius > 0.0, "> 0 (m)");
         c.num("cradle.density", k.density, k.density > 0.0, "> 0 (kg/m^3)");
@@ -143,7 +147,7 @@ impl Config {
         );
 
         let s = &self.start;
-        if (1..=200).contains(&k.balls) && s.lift > k.balls {
+        if (1..=MAX_BALLS).contains(&k.balls) && s.lift > k.balls {
             c.fail(
                 "start.lift",
                 s.lift,

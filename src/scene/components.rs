@@ -1,6 +1,5 @@
 //! ECS components, markers, resources and messages of the cradle world.
 
-use crate::config::{CameraConfig, Config, LightConfig};
 use crate::physics::{Cradle, Snapshot};
 use crate::trace;
 use bevy_ecs::prelude::*;
@@ -86,9 +85,9 @@ pub struct StrandOf {
     pub anchor: DVec3,
 }
 
-/// A light source entity.
-#[derive(Component, Debug, Clone, PartialEq)]
-pub struct Light(pub LightConfig);
+/// A light source entity, as the tracer takes it.
+#[derive(Component, Debug, Clone, Copy, PartialEq)]
+pub struct Light(pub trace::Light);
 
 /// Running or paused.
 #[derive(Resource, Debug, Clone, Copy, PartialEq, Eq)]
@@ -117,23 +116,7 @@ pub struct CradleState {
     pub snapshot: Snapshot,
 }
 
-/// The config the world was spawned from.
-#[derive(Resource, Debug, Clone)]
-pub struct ActiveConfig(pub Config);
-
-/// The camera of the world.
-#[derive(Resource, Debug, Clone)]
-pub struct CameraRes(pub CameraConfig);
-
-/// The flat scene the extract stage fills for the tracer.
+/// The flat scene for the tracer: its camera, lights and settings are set at
+/// spawn, its objects by the extract stage each frame.
 #[derive(Resource, Debug, Clone, Default)]
 pub struct FlatScene(pub trace::Scene);
-
-/// Commands from the user (keys) to the world.
-#[derive(Message, Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Control {
-    /// Start or stop the swing.
-    TogglePause,
-    /// Back to the asset's initial state.
-    Reset,
-}

@@ -1,12 +1,14 @@
-//! The ECS world: components (`components`), spawning from a config (`spawn`), the
-//! frame's systems (`systems`), and [`CradleWorld`], which owns the world and the
-//! frame schedule of chained sets Input -> Physics -> Extract.
+//! The ECS world: components (`components`), spawning from a config (`spawn`,
+//! with the tracer's camera, lights and settings from `view`), the frame's
+//! systems (`systems`), and [`CradleWorld`], which owns the world and the frame
+//! schedule of chained sets Input -> Physics -> Extract.
 
 pub mod components;
 pub mod spawn;
 pub mod systems;
+pub mod view;
 
-pub use components::{Control, CradleState, FlatScene, SimClock, SimState};
+pub use components::{CradleState, FlatScene, SimClock, SimState};
 
 use crate::config::Config;
 use bevy_ecs::prelude::*;
@@ -14,7 +16,7 @@ use bevy_ecs::prelude::*;
 /// The stages of a frame, run in this order.
 #[derive(SystemSet, Debug, Clone, PartialEq, Eq, Hash)]
 pub enum FrameSet {
-    /// Keys and controls; the clock.
+    /// The clock (the app sets the run state directly, between frames).
     Input,
     /// The cradle's state; ball and string transforms.
     Physics,
@@ -27,15 +29,7 @@ pub enum FrameSet {
 pub fn frame_schedule() -> Schedule {
     let mut schedule = Schedule::default();
     schedule.configure_sets((FrameSet::Input, FrameSet::Physics, FrameSet::Extract).chain());
-    schedule.add_systems(
-        (
-            bevy_ecs::message::message_update_system,
-            systems::apply_controls,
-            systems::advance_clock,
-        )
-            .chain()
-            .in_set(FrameSet::Input),
-    );
+    schedule.add_systems(systems::advance_clock.in_set(FrameSet::Input));
     schedule.add_systems(
         (
             systems::step_physics,
@@ -66,9 +60,14 @@ impl CradleWorld {
         }
     }
 
-    /// Sends a control, handled at the start of the next frame.
-    pub fn send(&mut self, control: Control) {
-        self.world.write_message(control);
+    /// Starts or stops the swing, at once: the next frame sees it, and so does a
+    /// respawn before that frame.
+    pub fn set_running(&mut self, running: bool) {
+        *self.world.resource_mut::<SimState>() = if running {
+            SimState::Running
+        } else {
+            SimState::Paused
+        };
     }
 
     /// Runs one frame that lasted `dt` seconds of wall-clock time.
@@ -86,7 +85,8 @@ impl CradleWorld {
         self.schedule.run(&mut self.world);
     }
 
-    /// Replaces the scene by one spawned from `config`.
+    /// Replaces the scene by one spawned from `config`, at t = 0, running as
+    /// `config.start.running` says: the one way to reset.
     pub fn respawn(&mut self, config: &Config) {
         spawn::respawn(&mut self.world, config);
     }

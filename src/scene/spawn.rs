@@ -1,24 +1,25 @@
 //! Spawning the world from a config: balls on V strings from two top rails, the
-//! frame's rods, the floor, lights and camera, plus the physics resources.
+//! frame's rods, the floor and lights, plus the physics resources and the flat
+//! scene's static part (`view`).
 
 use super::components::{
-    ActiveConfig, Ball, CameraRes, CradleState, FlatScene, Floor, Light, Material, Pendulum, Rod,
-    Shape, SimClock, SimState, Strand, StrandOf, Transform,
+    Ball, CradleState, FlatScene, Floor, Light, Material, Pendulum, Rod, Shape, SimClock, SimState,
+    Strand, StrandOf, Transform,
 };
-use crate::config::{CameraConfig, Config, MaterialConfig};
+use super::view::{self, f32x3};
+use crate::config::{Config, MaterialConfig};
 use crate::trace;
 use bevy_ecs::prelude::*;
-use glam::{DVec3, Vec3};
+use glam::DVec3;
 
 /// Converts a config material to the tracer's.
 #[must_use]
 pub fn material(m: &MaterialConfig) -> Material {
-    let rgb = |c: [f64; 3]| Vec3::new(c[0] as f32, c[1] as f32, c[2] as f32);
     Material(trace::Material {
-        color: rgb(m.color),
+        color: f32x3(m.color),
         specular: m.specular.map(|e| e as f32),
         reflective: m.reflective as f32,
-        checker: m.checker.map(|c| (rgb(c), m.checker_size as f32)),
+        checker: m.checker.map(|c| (f32x3(c), m.checker_size as f32)),
     })
 }
 
@@ -58,77 +59,6 @@ impl Layout {
     }
 }
 
-/// The frame's eight corners (posts, rails and feet, with their thickness).
-#[must_use]
-pub fn frame_corners(config: &Config) -> [DVec3; 8] {
-    let c = &config.cradle;
-    let layout = Layout::new(config);
-    let (x, top, z) = (
-        layout.half_width + c.frame_radius,
-        c.pivot_height + c.frame_radius,
-        c.rail_spread + c.frame_radius,
-    );
-    [
-        DVec3::new(-x, 0.0, -z),
-        DVec3::new(x, 0.0, -z),
-        DVec3::new(-x, 0.0, z),
-        DVec3::new(x, 0.0, z),
-        DVec3::new(-x, top, -z),
-        DVec3::new(x, top, -z),
-        DVec3::new(-x, top, z),
-        DVec3::new(x, top, z),
-    ]
-}
-
-/// Where `point` lands in the view of `cam` for a `width x height` picture, as
-/// `(x, y)` in -1..=1 across the picture, and its depth along the line of sight.
-#[must_use]
-pub fn view_coords(cam: &CameraConfig, width: u32, height: u32, point: DVec3) -> (f64, f64, f64) {
-    let eye = DVec3::from(cam.position);
-    let fwd = (DVec3::from(cam.look_at) - eye).normalize();
-    let right = fwd.cross(DVec3::Y).normalize();
-    let up = right.cross(fwd);
-    let half_h = (cam.fov_deg.to_radians() / 2.0).tan();
-    let half_w = half_h * f64::from(width) / f64::from(height);
-    let v = point - eye;
-    let depth = v.dot(fwd);
-    (
-        v.dot(right) / depth / half_w,
-        v.dot(up) / depth / half_h,
-        depth,
-    )
-}
-
-/// The camera of `config`, with `camera.fit` moved back along its line of sight
-/// until every corner of the frame is inside 95% of the view. A camera that sees
-/// the frame already, or looks straight down, is left as it is.
-#[must_use]
-pub fn fitted_camera(config: &Config) -> CameraConfig {
-    let mut cam = config.camera.clone();
-    let (w, h) = (config.render.width, config.render.height);
-    let corners = frame_corners(config);
-    let inside = |cam: &CameraConfig| {
-        corners.iter().all(|&p| {
-            let (x, y, depth) = view_coords(cam, w, h, p);
-            depth > 0.0 && x.abs() <= 0.95 && y.abs() <= 0.95
-        })
-    };
-    let look = DVec3::from(cam.look_at);
-    let back = DVec3::from(cam.position) - look;
-    if !cam.fit || inside(&cam) || back.normalize().cross(DVec3::Y).length() < 1e-6 {
-        return cam;
-    }
-    // 2% further each step: at most ~350 steps to 1000 times the distance.
-    for i in 1..=350 {
-        let eye = look + back * 1.02_f64.powi(i);
-        cam.position = eye.to_array();
-        if inside(&cam) {
-            break;
-        }
-    }
-    cam
-}
-
 /// Where a ball hangs at angle `theta`: centre and orientation.
 #[must_use]
 pub fn ball_transform(pivot: DVec3, length: f64, theta: f64) -> Transform {
@@ -149,7 +79,6 @@ pub fn attach_point(ball: &Transform, radius: f64) -> DVec3 {
 #[must_use]
 pub fn build_world(config: &Config) -> World {
     let mut world = World::new();
-    bevy_ecs::message::MessageRegistry::register_message::<super::components::Control>(&mut world);
     spawn_entities(&mut world, config);
     insert_resources(&mut world, config);
     world
@@ -179,9 +108,8 @@ fn insert_resources(world: &mut World, config: &Config) {
     } else {
         SimState::Paused
     });
-    world.insert_resource(ActiveConfig(config.clone()));
-    world.insert_resource(CameraRes(fitted_camera(config)));
-    world.init_resource::<FlatScene>();
+    // Camera, lights and render settings are the tracer's types from here on.
+    world.insert_resource(FlatScene(view::static_scene(config)));
 }
 
 fn spawn_entities(world: &mut World, config: &Config) {
@@ -257,6 +185,6 @@ fn spawn_entities(world: &mut World, config: &Config) {
         material(&m.floor),
     ));
     for light in &config.lights {
-        world.spawn(Light(light.clone()));
+        world.spawn(Light(view::light(light)));
     }
 }

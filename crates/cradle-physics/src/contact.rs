@@ -18,6 +18,16 @@ pub fn gap_fn(p: &CradleParams, theta_a: f64, theta_b: f64) -> f64 {
         + 4.0 * p.length * s * (p.spacing() * mean.cos() + p.length * s)
 }
 
+/// Overlap of neighbours at `theta_a`, `theta_b` (m), positive when the spheres
+/// interpenetrate: `2r - |c_b - c_a|`, written from the gap function without
+/// cancellation.
+#[must_use]
+pub fn overlap(p: &CradleParams, theta_a: f64, theta_b: f64) -> f64 {
+    let h = gap_fn(p, theta_a, theta_b);
+    let r2 = 2.0 * p.radius;
+    -h / (r2 + (r2 * r2 + h).max(0.0).sqrt())
+}
+
 /// Unit contact normal from ball `a` to ball `b = a + 1` and the levers
 /// `J = dc/dtheta . n` of each ball (m/rad).
 fn normal_and_levers(p: &CradleParams, theta_a: f64, theta_b: f64) -> ((f64, f64), f64, f64) {

@@ -58,19 +58,9 @@ struct System<'a> {
     inv_inertia: f64,
 }
 
-/// Overlap of neighbours at `theta_a`, `theta_b` (m), positive when the spheres
-/// interpenetrate: `2r - |c_b - c_a|`, written from the gap function without
-/// cancellation.
-#[must_use]
-pub fn overlap(p: &CradleParams, theta_a: f64, theta_b: f64) -> f64 {
-    let h = contact::gap_fn(p, theta_a, theta_b);
-    let r2 = 2.0 * p.radius;
-    -h / (r2 + (r2 * r2 + h).max(0.0).sqrt())
-}
-
 impl System<'_> {
     fn overlap(&self, theta: &[f64], a: usize) -> f64 {
-        overlap(self.p, theta[a], theta[a + 1])
+        contact::overlap(self.p, theta[a], theta[a + 1])
     }
 
     /// `dy/dt` into `out`.

@@ -2,8 +2,8 @@
 //! struck chain and its independence of stiffness and impact speed, and frame-rate
 //! independence of the engine in Hertz mode.
 
-use newtons_cradle::physics::hertz::{run_phase, stiffness};
-use newtons_cradle::physics::{Cradle, CradleParams, Integrator};
+use cradle_physics::hertz::{run_phase, stiffness};
+use cradle_physics::{Cradle, CradleParams, Integrator};
 
 /// Steel balls of 2 cm radius on 16 cm strings, as the default asset.
 fn steel(balls: usize, gravity: f64) -> CradleParams {
@@ -92,7 +92,7 @@ fn energy_is_conserved_through_every_contact_of_a_swing() {
     let mut c = Cradle::new(p, Integrator::Exact, 1e-3, 1, 30f64.to_radians());
     let mut worst: f64 = 0.0;
     for i in 1..=300 {
-        let s = c.snapshot(i as f64 * 0.01);
+        let s = c.snapshot(f64::from(i) * 0.01);
         worst = worst.max(c.energy_rel_error(&s).abs());
         assert!(s.theta.iter().chain(&s.omega).all(|x| x.is_finite()));
     }

@@ -1,8 +1,8 @@
 //! Behaviour of the cradle's physics: energy, k in -> k out, frame-rate
 //! independence, determinism, restitution, and agreement with the closed form.
 
-use newtons_cradle::physics::elliptic::{ellip_k, sncndn};
-use newtons_cradle::physics::{Cradle, CradleParams, Integrator};
+use cradle_physics::elliptic::{ellip_k, sncndn};
+use cradle_physics::{Cradle, CradleParams, Integrator};
 
 fn params(balls: usize, gap: f64, restitution: f64) -> CradleParams {
     CradleParams {

@@ -2,12 +2,16 @@
 //! 30 digits, `mp.ellipfun`, `mp.ellipk`, `mp.ellipf`) and the period table.
 
 #![expect(
+    clippy::unreadable_literal,
+    reason = "reference values as mpmath prints them, digit for digit"
+)]
+#![expect(
     clippy::excessive_precision,
     reason = "reference values are quoted with every digit mpmath printed"
 )]
 
-use newtons_cradle::physics::elliptic::{ellip_f, ellip_k, phase_of, sncndn};
-use newtons_cradle::physics::period_ratio;
+use cradle_physics::elliptic::{ellip_f, ellip_k, phase_of, sncndn};
+use cradle_physics::period_ratio;
 
 /// Double precision carries ~16 digits; the Landen recursion and range reduction
 /// lose up to a few ulps per step, and u = 10 near m = 1 is reduced by ~3 periods:

@@ -1,4 +1,5 @@
-//! The physics core: plain Rust over plain data, no ECS or window types.
+//! cradle-physics: the physics core of newtons-cradle. Plain Rust over plain
+//! data; it depends on no ECS, window or GPU crate.
 //!
 //! Each ball is a rigid physical pendulum in one plane. Between impacts it flies in
 //! closed form (`flight`, from the Jacobi elliptic functions of `elliptic`);

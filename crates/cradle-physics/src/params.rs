@@ -113,7 +113,7 @@ impl CradleParams {
         };
         let elastic: f64 = theta
             .windows(2)
-            .map(|w| super::hertz::overlap(self, w[0], w[1]).max(0.0))
+            .map(|w| super::contact::overlap(self, w[0], w[1]).max(0.0))
             .map(|d| 0.4 * k * d * d * d.sqrt())
             .sum();
         balls + elastic
@@ -144,4 +144,21 @@ pub fn lifted_start(balls: usize, lift: usize, angle: f64) -> (Vec<f64>, Vec<f64
         .map(|i| if i < lift { -angle } else { 0.0 })
         .collect();
     (theta, vec![0.0; balls])
+}
+
+/// The largest `|theta|` (rad) any ball can reach from [`lifted_start`]'s state,
+/// by energy alone.
+///
+/// The exact engine never adds energy (a tested property), and no ball can hold
+/// more than all of it: with `lift` balls at `angle`, no ball passes
+/// `2 asin(sqrt(lift) sin(angle/2))` (exactly `angle` for one ball), and `pi`
+/// when the energy could carry one over the top. Fixed-step integrators can gain
+/// energy, so for them the bound is `pi`.
+#[must_use]
+pub fn swing_bound(integrator: Integrator, lift: usize, angle: f64) -> f64 {
+    if integrator != Integrator::Exact {
+        return std::f64::consts::PI;
+    }
+    let s = (lift as f64).sqrt() * (0.5 * angle).sin();
+    2.0 * s.min(1.0).asin()
 }

@@ -1,71 +1,19 @@
 //! Turning a scene into pixels: one function per pixel, rows in parallel with
-//! rayon or serially; both run the same per-pixel code, so their bytes are equal.
+//! rayon ([`render`]) or serially ([`render_serial`], with
+//! [`RenderOptions::FULL`] the reference); both run the same per-pixel code, so
+//! their bytes are equal. `incremental` reuses [`Frame`] for its partial frames.
 
 use super::camera::CameraRays;
+use super::color::{Image, srgb8};
 use super::geometry::Aabb;
+use super::motion::{Cells, Motion, MotionGrid};
 use super::prepared::Prepared;
+use super::sampling::sample_offsets;
 use super::scene::Scene;
-use super::shade::{Cells, Motion, MotionGrid, radiance_bound, trace, trace_primary};
+use super::shade::{radiance_bound, trace, trace_primary};
 use super::tiles::Tiles;
 use glam::Vec3;
 use rayon::prelude::*;
-
-/// An RGBA8 picture, sRGB-encoded, rows top to bottom.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Image {
-    /// Width in pixels.
-    pub width: u32,
-    /// Height in pixels.
-    pub height: u32,
-    /// `width * height * 4` bytes.
-    pub rgba: Vec<u8>,
-}
-
-/// `THRESHOLDS[b]` is the linear value at which the sRGB byte becomes `b + 1`: the
-/// decoded midpoint `(b + 0.5) / 255`, computed in f64 once.
-fn thresholds() -> &'static [f32; 255] {
-    static T: std::sync::OnceLock<[f32; 255]> = std::sync::OnceLock::new();
-    T.get_or_init(|| {
-        std::array::from_fn(|b| {
-            let s = (b as f64 + 0.5) / 255.0;
-            let linear = if s <= 0.040_45 {
-                s / 12.92
-            } else {
-                ((s + 0.055) / 1.055).powf(2.4)
-            };
-            linear as f32
-        })
-    })
-}
-
-/// Linear [0, 1] to an sRGB byte (IEC 61966-2-1), rounded to the nearest byte and
-/// clamping out-of-range values: the count of decision points at or below the
-/// value, found by binary search instead of a `powf` per channel.
-#[must_use]
-pub fn srgb8(linear: f32) -> u8 {
-    // NaN counts as 0, like the clamp it replaces.
-    thresholds().partition_point(|&t| t <= linear) as u8
-}
-
-/// Sub-pixel sample offsets: the pixel centre for one sample, else the first `n`
-/// points of the R2 low-discrepancy sequence (the same for every pixel).
-#[must_use]
-pub fn sample_offsets(n: u32) -> Vec<(f32, f32)> {
-    if n <= 1 {
-        return vec![(0.5, 0.5)];
-    }
-    // Roberts' R2: steps by the inverse powers of the plastic number.
-    const A1: f64 = 0.754_877_666_246_692_7;
-    const A2: f64 = 0.569_840_290_998_053_3;
-    (0..n)
-        .map(|i| {
-            (
-                ((0.5 + A1 * f64::from(i)) % 1.0) as f32,
-                ((0.5 + A2 * f64::from(i)) % 1.0) as f32,
-            )
-        })
-        .collect()
-}
 
 /// Which work-skipping the renderer may use. Each leaves the picture byte for byte
 /// as the full render makes it (tested); turning them off gives that reference.
@@ -95,7 +43,7 @@ impl RenderOptions {
 }
 
 /// Everything one row needs, shared by the serial and parallel paths.
-struct Frame<'a> {
+pub(crate) struct Frame<'a> {
     prepared: Prepared<'a>,
     tiles: Option<Tiles>,
     camera: CameraRays,
@@ -103,14 +51,14 @@ struct Frame<'a> {
     bound: f32,
     width: u32,
     height: u32,
-    motion: Option<MotionGrid>,
+    pub(crate) motion: Option<MotionGrid>,
     /// Adaptive anti-aliasing: the byte difference above which a pixel is an edge.
     edge: Option<f32>,
 }
 
 impl<'a> Frame<'a> {
     /// `track`: note which pixels' rays enter the motion box (incremental frames only).
-    fn new(scene: &'a Scene, options: RenderOptions, track: bool) -> Self {
+    pub(crate) fn new(scene: &'a Scene, options: RenderOptions, track: bool) -> Self {
         let prepared = Prepared::new(scene)
             .with_shadow_culling(options.shadow_culling)
             .with_bvh(options.bvh);
@@ -162,7 +110,7 @@ impl<'a> Frame<'a> {
         mask
     }
 
-    fn put(&self, x: u32, y: u32, px: &mut [u8]) -> Cells {
+    pub(crate) fn put(&self, x: u32, y: u32, px: &mut [u8]) -> Cells {
         self.put_with(x, y, px, &self.offsets)
     }
 
@@ -195,7 +143,7 @@ impl<'a> Frame<'a> {
     /// every pixel at every sample, or with adaptive anti-aliasing one centre
     /// sample first and then every sample at the edges of that picture. Returns it
     /// with each pixel's motion cells (row-major).
-    fn image(&self, parallel: bool) -> (Image, Vec<Cells>) {
+    pub(crate) fn image(&self, parallel: bool) -> (Image, Vec<Cells>) {
         let mut img = Image {
             width: self.width,
             height: self.height,
@@ -271,151 +219,6 @@ pub fn render_serial_with(scene: &Scene, options: RenderOptions) -> Image {
 #[must_use]
 pub fn render(scene: &Scene) -> Image {
     Frame::new(scene, RenderOptions::FAST, false).image(true).0
-}
-
-/// Whether `a` and `b` differ at most in the shapes of their moving objects: then
-/// a pixel whose rays met no moving object keeps its bytes. Every field is named,
-/// so a new one cannot be forgotten here.
-fn same_but_motion(a: &Scene, b: &Scene) -> bool {
-    let Scene {
-        objects,
-        lights,
-        camera,
-        background,
-        size,
-        max_depth,
-        samples,
-        adaptive,
-        motion_bounds,
-    } = a;
-    objects.len() == b.objects.len()
-        && objects.iter().zip(&b.objects).all(|(o, p)| {
-            o.moving == p.moving && o.material == p.material && (o.moving || o.shape == p.shape)
-        })
-        && *lights == b.lights
-        && *camera == b.camera
-        && *background == b.background
-        && *size == b.size
-        && *max_depth == b.max_depth
-        && *samples == b.samples
-        && *adaptive == b.adaptive
-        && *motion_bounds == b.motion_bounds
-}
-
-/// Renders frame after frame, re-tracing only what motion changed. Each pixel
-/// keeps the cells of the motion grid (the box every moving object stays in, cut
-/// 4 x 4 x 4) that its rays passed through. A frame re-traces only the pixels whose
-/// cells meet those of the objects that moved since the frame before, where they
-/// were and where they are: every other pixel's rays meet the same objects as when
-/// it was traced, so it keeps its bytes. Every frame is byte-identical to a full
-/// render (tested over 300-frame swings). Anything else changing (camera, lights,
-/// size, a static object) brings a full frame.
-#[derive(Debug, Default)]
-pub struct Incremental {
-    /// The scene of the last frame.
-    last: Option<Scene>,
-    image: Option<Image>,
-    /// Per pixel, the motion cells its rays passed through when last traced.
-    masks: Vec<Cells>,
-    full: bool,
-    /// Pixels re-traced by the last frame.
-    retraced: usize,
-}
-
-/// The motion cells of the objects that moved from `before` to `after` (same
-/// objects in the same order), where they were and where they are.
-fn moved_cells(grid: &MotionGrid, before: &Scene, after: &Scene) -> Cells {
-    before
-        .objects
-        .iter()
-        .zip(&after.objects)
-        .filter(|(a, b)| a.moving && a.shape != b.shape)
-        .map(|(a, b)| {
-            [&a.shape, &b.shape]
-                .into_iter()
-                .map(|s| {
-                    super::prepared::bounds(s).map_or(Cells::MAX, |bx| grid.cells(bx.min, bx.max))
-                })
-                .fold(0, |m, c| m | c)
-        })
-        .fold(0, |m, c| m | c)
-}
-
-impl Incremental {
-    /// A renderer with nothing cached: its first frame is full.
-    #[must_use]
-    pub fn new() -> Self {
-        Self::default()
-    }
-
-    /// Renders `scene` on the current rayon pool and returns the picture.
-    pub fn render(&mut self, scene: &Scene) -> &Image {
-        let frame = Frame::new(scene, RenderOptions::FAST, true);
-        // With adaptive anti-aliasing a pixel's sampling depends on its neighbours'
-        // colours, which motion changes: those frames are traced in full.
-        let reuse = scene.motion_bounds.is_some()
-            && scene.adaptive.is_none_or(|_| scene.samples <= 1)
-            && self.image.is_some()
-            && self
-                .last
-                .as_ref()
-                .is_some_and(|l| same_but_motion(l, scene));
-        self.full = !reuse;
-        match (reuse, frame.motion, self.last.as_ref()) {
-            (true, Some(grid), Some(last)) => {
-                let moved = moved_cells(&grid, last, scene);
-                let img = self.image.as_mut().expect("checked above");
-                let stride = img.width as usize * 4;
-                self.retraced = img
-                    .rgba
-                    .par_chunks_exact_mut(stride)
-                    .zip(self.masks.par_chunks_exact_mut(img.width as usize))
-                    .enumerate()
-                    .map(|(y, (row, masks))| {
-                        let mut n = 0;
-                        for (x, (px, m)) in row.chunks_exact_mut(4).zip(masks).enumerate() {
-                            if *m & moved != 0 {
-                                *m = frame.put(x as u32, y as u32, px);
-                                n += 1;
-                            }
-                        }
-                        n
-                    })
-                    .sum();
-            }
-            _ => {
-                let (img, masks) = frame.image(true);
-                self.retraced = masks.len();
-                self.masks = masks;
-                self.image = Some(img);
-                self.full = true;
-            }
-        }
-        self.last = Some(scene.clone());
-        self.image.as_ref().expect("rendered above")
-    }
-
-    /// The last picture rendered.
-    #[must_use]
-    pub fn image(&self) -> Option<&Image> {
-        self.image.as_ref()
-    }
-
-    /// Whether the last frame was traced in full.
-    #[must_use]
-    pub fn last_was_full(&self) -> bool {
-        self.full
-    }
-
-    /// Share of pixels the last frame re-traced (0..=1).
-    #[must_use]
-    pub fn dynamic_share(&self) -> f64 {
-        let total = self
-            .image
-            .as_ref()
-            .map_or(1, |i| (i.width * i.height) as usize);
-        self.retraced as f64 / total.max(1) as f64
-    }
 }
 
 /// A rayon pool of `threads` workers (0: one per core).

@@ -176,6 +176,7 @@ impl Footprints {
     /// The objects that can block a shadow ray starting at `start` (just off the
     /// plane on its lit side): the cell's and the always-tested ones. `None` when
     /// `start` is not on the lit side.
+    #[must_use]
     pub fn candidates(&self, start: Vec3) -> Option<(&[usize], &[usize])> {
         if (start - self.origin).dot(self.normal) < 0.0 {
             return None;

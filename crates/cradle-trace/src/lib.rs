@@ -1,0 +1,34 @@
+//! cradle-trace: the CPU ray tracer of newtons-cradle. Plain data in, pixels out;
+//! it depends on no ECS, window or GPU crate.
+//!
+//! The app's extract stage turns its ECS world into a flat [`Scene`] each frame.
+//! Then, in data-flow order:
+//! - [`scene`]: the flat scene (shapes, materials, lights, camera) in f32;
+//! - [`prepared`], [`bvh`], [`tiles`], [`shadow`]: bounds and culling structures
+//!   built once per frame ([`Prepared`]);
+//! - [`camera`], [`geometry`], [`shade`]: rays, hit tests and Whitted shading;
+//! - [`sampling`], [`render`]: sample offsets and the serial and parallel render
+//!   twins ([`render`], [`render_serial`]);
+//! - [`motion`], [`incremental`]: motion cells and incremental frames
+//!   ([`Incremental`]);
+//! - [`color`]: linear colour to sRGB bytes in an RGBA8 [`Image`].
+
+pub mod bvh;
+pub mod camera;
+pub mod color;
+pub mod geometry;
+pub mod incremental;
+pub mod motion;
+pub mod prepared;
+pub mod render;
+pub mod sampling;
+pub mod scene;
+pub mod shade;
+pub mod shadow;
+pub mod tiles;
+
+pub use color::{Image, srgb8};
+pub use incremental::Incremental;
+pub use prepared::Prepared;
+pub use render::{RenderOptions, pool, render, render_serial, render_serial_with};
+pub use scene::{Camera, Light, Material, Object, Scene, Shape};

@@ -1,0 +1,304 @@
+//! The window-free session: run state, the user's controls, respawn and reload,
+//! the clock between frames, and what the HUD says. The handler feeds it keys and
+//! redraws; it steps the ECS world and the incremental tracer. Nothing here knows
+//! of winit or pixels, so its rules are unit-tested without a display.
+
+use super::keys::{self, Action};
+use crate::cli::{Common, InputError};
+use crate::config::{Config, ConfigSource, MAX_BALLS};
+use crate::scene::CradleWorld;
+use crate::trace::{self, Image};
+use std::time::Instant;
+
+/// Longest simulated step of one frame (s): after a stall the swing continues
+/// instead of jumping ahead.
+pub const MAX_FRAME_DT: f64 = 0.25;
+
+/// What the HUD shows; H or F1 steps through them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum HudMode {
+    /// State, timing, energy error, and a hint.
+    Status,
+    /// The status and the key list.
+    Help,
+    /// Nothing (errors still show).
+    Off,
+}
+
+impl HudMode {
+    fn next(self) -> Self {
+        match self {
+            Self::Status => Self::Help,
+            Self::Help => Self::Off,
+            Self::Off => Self::Status,
+        }
+    }
+}
+
+/// What the window must do after an action the session cannot do itself.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Effect {
+    /// Nothing more than a redraw.
+    Redraw,
+    /// Save what the window shows.
+    Screenshot,
+    /// Close the window.
+    Quit,
+}
+
+/// A line of HUD text and its colour.
+pub type HudLine = (String, [u8; 3]);
+
+/// The app's state between frames.
+pub struct Session {
+    /// The asset as loaded (with the command line's overrides): what R returns to.
+    asset: Config,
+    /// The asset with the user's changes (ball and lift counts).
+    config: Config,
+    source: ConfigSource,
+    overrides: Common,
+    world: CradleWorld,
+    pool: rayon::ThreadPool,
+    /// Traces frames, re-tracing only what the swing can change.
+    renderer: trace::Incremental,
+    /// The scene changed while paused: trace once more.
+    retrace: bool,
+    last_frame: Option<Instant>,
+    /// Smoothed frames per second and trace milliseconds.
+    fps: f64,
+    trace_ms: f64,
+    hud: HudMode,
+    error: Option<String>,
+}
+
+impl Session {
+    /// A session showing `config`, which came from `source` with `overrides`.
+    ///
+    /// # Errors
+    /// When the tracing threads cannot be started.
+    pub fn new(config: Config, source: ConfigSource, overrides: Common) -> anyhow::Result<Self> {
+        Ok(Self {
+            pool: trace::pool(config.render.threads)?,
+            world: CradleWorld::new(&config),
+            asset: config.clone(),
+            config,
+            source,
+            overrides,
+            renderer: trace::Incremental::new(),
+            retrace: true,
+            last_frame: None,
+            fps: 0.0,
+            trace_ms: 0.0,
+            hud: HudMode::Status,
+            error: None,
+        })
+    }
+
+    /// The config shown now (the asset with the user's changes).
+    #[must_use]
+    pub fn config(&self) -> &Config {
+        &self.config
+    }
+
+    /// Whether the swing runs.
+    #[must_use]
+    pub fn running(&self) -> bool {
+        self.world.state() == crate::scene::SimState::Running
+    }
+
+    /// The error shown in the HUD, if any.
+    #[must_use]
+    pub fn error(&self) -> Option<&str> {
+        self.error.as_deref()
+    }
+
+    /// Does what a key asks; says what is left for the window to do.
+    pub fn act(&mut self, action: Action) -> Effect {
+        match action {
+            Action::TogglePause => {
+                self.world.set_running(!self.running());
+                self.restart_clock();
+            }
+            Action::Reset => {
+                // Back to the asset's start: its ball and lift counts and run state.
+                self.config = self.asset.clone();
+                self.world.respawn(&self.config);
+                self.restart_clock();
+            }
+            Action::Lift(d) => {
+                let lift = self.config.start.lift.checked_add_signed(d as isize);
+                if let Some(lift) = lift.filter(|&l| l <= self.config.cradle.balls) {
+                    self.config.start.lift = lift;
+                    self.respawn();
+                }
+            }
+            Action::Balls(d) => {
+                let balls = self.config.cradle.balls.checked_add_signed(d as isize);
+                if let Some(balls) = balls.filter(|b| (1..=MAX_BALLS).contains(b)) {
+                    self.config.cradle.balls = balls;
+                    self.config.start.lift = self.config.start.lift.min(balls);
+                    self.respawn();
+                }
+            }
+            Action::ToggleHud => self.hud = self.hud.next(),
+            Action::Screenshot => return Effect::Screenshot,
+            Action::Quit => return Effect::Quit,
+        }
+        Effect::Redraw
+    }
+
+    /// Hidden time does not count: the swing resumes where it stopped.
+    pub fn hold_clock(&mut self) {
+        self.last_frame = None;
+    }
+
+    /// Paused time does not count either; the changed scene is traced again.
+    fn restart_clock(&mut self) {
+        self.hold_clock();
+        self.retrace = true;
+    }
+
+    /// A new world for the current config from the start position, keeping the
+    /// swing running if it was.
+    fn respawn(&mut self) {
+        let running = self.running();
+        self.world.respawn(&self.config);
+        self.world.set_running(running);
+        self.restart_clock();
+    }
+
+    /// Loads the config file again with the command line's overrides. A good one
+    /// replaces the asset, after `resize` has taken its picture size; a bad one
+    /// (or a refused size) keeps the running scene and is shown until the next.
+    pub fn reload(&mut self, resize: impl FnOnce(u32, u32) -> Result<(), String>) {
+        let loaded = self
+            .source
+            .load()
+            .map_err(InputError::from)
+            .and_then(|mut c| {
+                self.overrides.apply(&mut c)?;
+                Ok(c)
+            });
+        let config = match loaded {
+            Ok(c) => c,
+            Err(e) => {
+                tracing::error!("config not reloaded: {e}");
+                self.error = Some(e.to_string());
+                return;
+            }
+        };
+        let (w, h) = (config.render.width, config.render.height);
+        if (w, h) != (self.config.render.width, self.config.render.height)
+            && let Err(e) = resize(w, h)
+        {
+            tracing::error!("cannot resize the framebuffer to {w}x{h}: {e}");
+            self.error = Some(format!("framebuffer {w}x{h}: {e}"));
+            return;
+        }
+        tracing::info!("reloaded {}", self.source);
+        if config.render.threads != self.config.render.threads
+            && let Ok(pool) = trace::pool(config.render.threads)
+        {
+            self.pool = pool;
+        }
+        self.asset = config.clone();
+        self.config = config;
+        self.error = None;
+        self.respawn();
+    }
+
+    /// Steps the world to `now` and traces, when something moves or changed.
+    pub fn step(&mut self, now: Instant) {
+        let running = self.running();
+        if running || self.retrace || self.renderer.image().is_none() {
+            let dt = self
+                .last_frame
+                .map_or(0.0, |t| (now - t).as_secs_f64().min(MAX_FRAME_DT));
+            self.world.frame(if running { dt } else { 0.0 });
+            let start = Instant::now();
+            let (pool, renderer, world) = (&self.pool, &mut self.renderer, &self.world);
+            pool.install(|| {
+                renderer.render(world.scene());
+            });
+            let ms = start.elapsed().as_secs_f64() * 1e3;
+            // Exponential smoothing over ~10 frames keeps the numbers readable.
+            let smooth = |old: f64, new: f64| {
+                if old == 0.0 {
+                    new
+                } else {
+                    0.9 * old + 0.1 * new
+                }
+            };
+            if running && dt > 0.0 {
+                self.fps = smooth(self.fps, 1.0 / dt);
+            }
+            self.trace_ms = smooth(self.trace_ms, ms);
+            self.retrace = false;
+        }
+        self.last_frame = running.then_some(now);
+    }
+
+    /// The last picture traced.
+    #[must_use]
+    pub fn image(&self) -> Option<&Image> {
+        self.renderer.image()
+    }
+
+    /// Simulated time (s) of the last frame.
+    #[must_use]
+    pub fn time(&self) -> f64 {
+        self.world.cradle().snapshot.t
+    }
+
+    /// The HUD's lines for its mode (none when off), plus any config error.
+    #[must_use]
+    pub fn hud_lines(&self) -> Vec<HudLine> {
+        let mut lines = Vec::new();
+        if self.hud != HudMode::Off {
+            let white = [235, 235, 235];
+            let cradle = self.world.cradle();
+            let err = cradle.cradle.energy_rel_error(&cradle.snapshot);
+            let (state, color) = if self.running() {
+                ("RUNNING", [140, 230, 140])
+            } else {
+                ("PAUSED - press SPACE", [250, 210, 110])
+            };
+            let c = &self.config;
+            lines.push((format!("Newton's cradle   {state}"), color));
+            lines.push((
+                format!(
+                    "fps {:5.1}   trace {:6.1} ms   t {:8.2} s",
+                    self.fps,
+                    self.trace_ms,
+                    self.time()
+                ),
+                white,
+            ));
+            lines.push((
+                format!(
+                    "balls {}  lifted {}  contact {}  energy err {err:+.1e}",
+                    c.cradle.balls,
+                    c.start.lift,
+                    c.contact.model.name()
+                ),
+                white,
+            ));
+            let grey = [180, 190, 200];
+            if self.hud == HudMode::Help {
+                lines.extend(keys::HELP.iter().map(|l| ((*l).to_string(), grey)));
+            } else {
+                lines.push(("H: help".to_string(), grey));
+            }
+        }
+        if let Some(e) = &self.error {
+            for line in format!("config error: {e}").lines() {
+                lines.push((line.to_string(), [255, 110, 100]));
+            }
+        }
+        lines
+    }
+}
+
+#[cfg(test)]
+#[path = "session_tests.rs"]
+mod tests;

@@ -1,0 +1,168 @@
+//! The session's rules, without a window: keys, respawns, reload, the clock.
+
+use super::{Effect, Session};
+use crate::app::keys::Action;
+use crate::cli::Common;
+use crate::config::{Config, ConfigSource, MAX_BALLS};
+use std::time::{Duration, Instant};
+
+/// A small, fast session: 32x16 pixels on one thread.
+fn session_with(source: ConfigSource) -> Session {
+    let mut config = Config::default();
+    config.render.width = 32;
+    config.render.height = 16;
+    config.render.threads = 1;
+    let overrides = Common {
+        width: Some(32),
+        height: Some(16),
+        threads: Some(1),
+        ..Common::default()
+    };
+    Session::new(config, source, overrides).expect("one thread starts")
+}
+
+fn session() -> Session {
+    session_with(ConfigSource::Builtin)
+}
+
+/// Steps `n` frames of 1/60 s each from `start`.
+fn frames(s: &mut Session, start: Instant, n: u32) -> Instant {
+    let mut now = start;
+    for _ in 0..n {
+        now += Duration::from_secs_f64(1.0 / 60.0);
+        s.step(now);
+    }
+    now
+}
+
+#[test]
+fn starts_paused_and_space_runs_the_clock() {
+    let mut s = session();
+    let now = Instant::now();
+    s.step(now);
+    assert!(!s.running(), "the default asset starts paused");
+    let now = frames(&mut s, now, 10);
+    assert_eq!(s.time(), 0.0, "paused: the clock stands still");
+    assert_eq!(s.act(Action::TogglePause), Effect::Redraw);
+    assert!(s.running());
+    s.step(now);
+    frames(&mut s, now, 30);
+    // 30 frames of 1/60 s after the first: half a second. `Duration` keeps whole
+    // nanoseconds, so each frame is 1/3 ns long: 1e-8 s over 30, within 1e-7.
+    assert!((s.time() - 0.5).abs() < 1e-7, "t = {}", s.time());
+}
+
+#[test]
+fn quick_arrow_presses_keep_the_swing_running() {
+    let mut s = session();
+    s.act(Action::TogglePause);
+    let now = frames(&mut s, Instant::now(), 5);
+    // Two respawns before any frame runs: the second must not read a stale state.
+    for a in [Action::Balls(1), Action::Lift(1), Action::Balls(-1)] {
+        s.act(a);
+        assert!(s.running(), "{a:?} stopped the swing");
+    }
+    frames(&mut s, now, 5);
+    assert!(s.running());
+    assert!(s.time() > 0.0, "the respawned swing runs");
+}
+
+#[test]
+fn counts_stay_in_range_and_reset_restores_the_asset() {
+    let mut s = session();
+    let asset = s.config().clone();
+    for _ in 0..=asset.start.lift {
+        s.act(Action::Lift(-1));
+    }
+    assert_eq!(s.config().start.lift, 0, "no fewer than none lifted");
+    for _ in 0..asset.cradle.balls + 3 {
+        s.act(Action::Lift(1));
+    }
+    assert_eq!(
+        s.config().start.lift,
+        asset.cradle.balls,
+        "at most every ball"
+    );
+    for _ in 0..asset.cradle.balls + 3 {
+        s.act(Action::Balls(-1));
+    }
+    assert_eq!(s.config().cradle.balls, 1, "at least one ball");
+    assert_eq!(
+        s.config().start.lift,
+        1,
+        "lifted follows the ball count down"
+    );
+    for _ in 0..MAX_BALLS + 3 {
+        s.act(Action::Balls(1));
+    }
+    assert_eq!(s.config().cradle.balls, MAX_BALLS);
+    s.act(Action::TogglePause);
+    s.act(Action::Reset);
+    assert_eq!(s.config(), &asset);
+    assert!(!s.running(), "reset restores the asset's run state");
+}
+
+#[test]
+fn window_actions_are_left_to_the_window() {
+    let mut s = session();
+    assert_eq!(s.act(Action::Screenshot), Effect::Screenshot);
+    assert_eq!(s.act(Action::Quit), Effect::Quit);
+}
+
+#[test]
+fn hud_cycles_status_help_and_off_but_errors_stay() {
+    let mut s = session();
+    s.step(Instant::now());
+    let status = s.hud_lines();
+    assert!(status[0].0.contains("PAUSED"), "{:?}", status[0]);
+    s.act(Action::ToggleHud);
+    assert!(s.hud_lines().len() > status.len(), "help adds the key list");
+    s.act(Action::ToggleHud);
+    assert!(s.hud_lines().is_empty(), "off shows nothing");
+    s.error = Some("line 3".into());
+    assert_eq!(
+        s.hud_lines().len(),
+        1,
+        "an error shows even with the HUD off"
+    );
+}
+
+#[test]
+fn a_bad_reload_keeps_the_scene_and_shows_where() {
+    let dir = std::env::temp_dir().join(format!("nc-session-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let path = dir.join("cradle.ron");
+    std::fs::write(&path, "(cradle: (balls: 7))").expect("write");
+    let mut s = session_with(ConfigSource::File(path.clone()));
+    s.reload(|_, _| Ok(()));
+    assert_eq!(s.config().cradle.balls, 7, "a good save applies");
+    assert_eq!(s.config().render.width, 32, "with the overrides again");
+    std::fs::write(&path, "(cradle: (balls: 0))").expect("write");
+    s.reload(|_, _| Ok(()));
+    assert_eq!(s.config().cradle.balls, 7, "a bad save keeps the scene");
+    let error = s.error().expect("the error is shown").to_owned();
+    assert!(
+        error.contains("cradle.balls") && error.contains("1..=200"),
+        "{error}"
+    );
+    std::fs::write(&path, "(cradle: (balls: 3))").expect("write");
+    s.reload(|_, _| Ok(()));
+    assert_eq!(s.error(), None, "the next good save clears it");
+    assert_eq!(s.config().cradle.balls, 3);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn a_refused_framebuffer_keeps_the_scene() {
+    let dir = std::env::temp_dir().join(format!("nc-session-fb-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let path = dir.join("cradle.ron");
+    std::fs::write(&path, "(cradle: (balls: 4))").expect("write");
+    let mut s = session_with(ConfigSource::File(path.clone()));
+    // No overrides for the size here: the asset's 1200x600 differs from 32x16.
+    s.overrides = Common::default();
+    s.reload(|_, _| Err("no texture".into()));
+    assert_eq!(s.config().cradle.balls, 5, "kept");
+    assert!(s.error().is_some_and(|e| e.contains("no texture")));
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -1,0 +1,178 @@
+//! The window's drawing surface: the winit window and the pixels framebuffer,
+//! resizes, occlusion, and presenting a traced picture with the HUD over it.
+//!
+//! pixels 0.17.2 reconfigures its surface at the size it last knew and retries,
+//! for ever, when the window has changed size since (parasyte/pixels#460). Checks
+//! before `render()` narrow that window but cannot close it: a resize can land
+//! while `render()` runs (it did, under Xvfb, when tracing starved the resizing
+//! client). So pixels is patched, as upstream #462 does, to give up after a few
+//! tries with `SurfaceOutdated`; then we wait for the size to settle and present
+//! again. Besides, every non-zero size goes to `resize_surface`, nothing is
+//! presented while resize events keep coming (until `RESIZE_SETTLE` after the
+//! last), and the window's size is checked again right before each render.
+
+use super::WindowError;
+use super::hud::Canvas;
+use super::session::HudLine;
+use crate::trace::Image;
+use pixels::{Pixels, SurfaceTexture};
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+use winit::dpi::PhysicalSize;
+use winit::event_loop::ActiveEventLoop;
+use winit::window::Window;
+
+/// Quiet time after the last resize event before presenting again.
+const RESIZE_SETTLE: Duration = Duration::from_millis(150);
+
+/// The window and its framebuffer.
+pub struct Surface {
+    window: Arc<Window>,
+    pixels: Pixels<'static>,
+    /// The size the surface was last configured at.
+    size: (u32, u32),
+    /// Minimised or hidden: nothing to draw.
+    occluded: bool,
+    /// When the last resize event came, while presenting waits for them to stop.
+    resizing: Option<Instant>,
+}
+
+impl Surface {
+    /// Opens a window with a `width x height` framebuffer.
+    ///
+    /// # Errors
+    /// No display, or no graphics adapter to draw with.
+    pub fn create(event_loop: &ActiveEventLoop, width: u32, height: u32) -> anyhow::Result<Self> {
+        let attrs = Window::default_attributes()
+            .with_title("Newton's cradle")
+            .with_inner_size(PhysicalSize::new(width, height));
+        let window = Arc::new(
+            event_loop
+                .create_window(attrs)
+                .map_err(|e| WindowError::NoDisplay(e.to_string()))?,
+        );
+        let size = window.inner_size();
+        // SurfaceTexture::new asserts a non-zero size.
+        let (sw, sh) = (size.width.max(1), size.height.max(1));
+        let pixels = Pixels::new(
+            width,
+            height,
+            SurfaceTexture::new(sw, sh, Arc::clone(&window)),
+        )
+        .map_err(|e| WindowError::NoAdapter(e.to_string()))?;
+        tracing::info!(
+            "window {sw}x{sh}, framebuffer {width}x{height}, format {:?}",
+            pixels.render_texture_format()
+        );
+        window.request_redraw();
+        Ok(Self {
+            window,
+            pixels,
+            size: (sw, sh),
+            occluded: false,
+            resizing: None,
+        })
+    }
+
+    /// Asks for a redraw event.
+    pub fn request_redraw(&self) {
+        self.window.request_redraw();
+    }
+
+    /// Whether the window can be seen (not minimised or covered).
+    #[must_use]
+    pub fn visible(&self) -> bool {
+        !self.occluded
+    }
+
+    /// The window was minimised (`true`) or shown again.
+    pub fn set_occluded(&mut self, hidden: bool) {
+        self.occluded = hidden;
+        if !hidden {
+            self.window.request_redraw();
+        }
+    }
+
+    /// The window changed size: follow it, and hold presenting until it settles.
+    pub fn resized(&mut self, size: PhysicalSize<u32>) {
+        if size.width > 0 && size.height > 0 {
+            match self.pixels.resize_surface(size.width, size.height) {
+                Ok(()) => self.size = (size.width, size.height),
+                Err(e) => tracing::warn!("cannot resize the surface to {size:?}: {e}"),
+            }
+        }
+        self.resizing = Some(Instant::now());
+    }
+
+    /// A new framebuffer size (a reloaded asset's picture size).
+    ///
+    /// # Errors
+    /// The GPU refused the texture, as text for the HUD.
+    pub fn resize_buffer(&mut self, width: u32, height: u32) -> Result<(), String> {
+        self.pixels
+            .resize_buffer(width, height)
+            .map_err(|e| e.to_string())
+    }
+
+    /// The framebuffer as last presented (the picture with the HUD).
+    #[must_use]
+    pub fn frame(&self) -> &[u8] {
+        self.pixels.frame()
+    }
+
+    /// While resizes keep coming: the time to wake and present again. Once they
+    /// have settled, asks for a redraw and returns `None`.
+    pub fn settle(&mut self) -> Option<Instant> {
+        let until = self.resizing? + RESIZE_SETTLE;
+        if Instant::now() < until {
+            return Some(until);
+        }
+        self.resizing = None;
+        self.window.request_redraw();
+        None
+    }
+
+    /// Shows `image` with `lines` of HUD over it, unless hidden or resizing.
+    ///
+    /// # Errors
+    /// Presenting failed for a reason other than a size change.
+    pub fn present(&mut self, image: Option<&Image>, lines: &[HudLine]) -> anyhow::Result<()> {
+        // Re-check the size right before rendering (see the module docs).
+        let size = self.window.inner_size();
+        if size.width == 0 || size.height == 0 || self.occluded || self.resizing.is_some() {
+            return Ok(());
+        }
+        if (size.width, size.height) != self.size {
+            if let Err(e) = self.pixels.resize_surface(size.width, size.height) {
+                tracing::error!("cannot resize the surface: {e}");
+                return Ok(());
+            }
+            self.size = (size.width, size.height);
+        }
+        if let Some(img) = image {
+            let frame = self.pixels.frame_mut();
+            if frame.len() == img.rgba.len() {
+                frame.copy_from_slice(&img.rgba);
+            }
+            if !lines.is_empty() {
+                let mut canvas = Canvas {
+                    rgba: frame,
+                    width: img.width as usize,
+                    height: img.height as usize,
+                };
+                canvas.panel(0, lines);
+            }
+        }
+        match self.pixels.render() {
+            Ok(()) => Ok(()),
+            Err(pixels::Error::SurfaceOutdated) => {
+                // The window changed size during the render: wait for it to settle,
+                // then present again at the size it has then.
+                tracing::debug!("surface out of date; presenting again once the size settles");
+                self.resizing = Some(Instant::now());
+                Ok(())
+            }
+            Err(e) => Err(anyhow::anyhow!("presenting the frame failed: {e}")),
+        }
+    }
+}

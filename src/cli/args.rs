@@ -1,0 +1,226 @@
+//! The clap schema of the command line (DESIGN.md contract): subcommands, their
+//! flags and the common overrides, as typed. Nothing here checks ranges: `job`
+//! does that once, turning these into a [`super::Job`].
+
+use clap::{Args, Parser, Subcommand, ValueEnum};
+use std::path::PathBuf;
+
+/// A Newton's cradle: ray traced on the CPU, driven by exact physics.
+#[derive(Debug, Parser)]
+#[command(name = "newtons-cradle", version, about, long_about = None)]
+pub struct Cli {
+    /// Overrides of the config asset, for every subcommand.
+    #[command(flatten)]
+    pub common: Common,
+    /// What to do; `run` when left out.
+    #[command(subcommand)]
+    pub command: Option<Command>,
+}
+
+/// Subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Open the window (the default).
+    Run,
+    /// Print the cradle's state as JSON Lines: params, samples, summary.
+    Simulate(SimulateArgs),
+    /// Ray trace frames without a window: a PNG, a PNG sequence, or a GIF.
+    Render(RenderArgs),
+    /// Measure the program.
+    #[command(subcommand)]
+    Bench(BenchCommand),
+}
+
+/// `render`'s flags.
+#[derive(Debug, Args)]
+pub struct RenderArgs {
+    /// A PNG file (one frame), or with --frames a folder for `frame_0000.png`, ...
+    #[arg(long, value_name = "PATH")]
+    pub out: Option<PathBuf>,
+    /// Simulated time of the (first) frame (s), 0..=1e6.
+    #[arg(
+        long,
+        default_value_t = 0.0,
+        allow_negative_numbers = true,
+        value_name = "S"
+    )]
+    pub time: f64,
+    /// Number of frames of a sequence or GIF, 1..=100000 (GIF default 60).
+    #[arg(long, allow_negative_numbers = true, value_name = "N")]
+    pub frames: Option<i64>,
+    /// Frames per second of simulated time, > 0 and <= 1000.
+    #[arg(
+        long,
+        default_value_t = 30.0,
+        allow_negative_numbers = true,
+        value_name = "F"
+    )]
+    pub fps: f64,
+    /// Write an animated GIF here instead.
+    #[arg(long, value_name = "FILE.gif")]
+    pub gif: Option<PathBuf>,
+}
+
+/// What to measure.
+#[derive(Debug, Subcommand)]
+pub enum BenchCommand {
+    /// Milliseconds per frame of a swinging cradle for 1..=all threads.
+    Render(BenchRenderArgs),
+    /// Work-precision: each integrator's angle error against CPU time.
+    Physics(BenchPhysicsArgs),
+    /// The stability stress suite, longer than `cargo test` runs it.
+    Stress(BenchStressArgs),
+    /// Picture error (RMSE, PSNR) against ms per frame, per anti-aliasing mode and depth.
+    RenderQuality(BenchQualityArgs),
+}
+
+/// `bench render-quality`'s flags.
+#[derive(Debug, Args)]
+pub struct BenchQualityArgs {
+    /// JSON Lines instead of a table.
+    #[arg(long)]
+    pub json: bool,
+    /// Also draw RMSE against ms per frame here.
+    #[arg(long, value_name = "FILE.svg")]
+    pub plot: Option<PathBuf>,
+    /// Frames timed per row (the median is reported), 1..=1000.
+    #[arg(
+        long,
+        default_value_t = 3,
+        allow_negative_numbers = true,
+        value_name = "N"
+    )]
+    pub frames: i64,
+}
+
+/// `bench stress`' flags.
+#[derive(Debug, Args)]
+pub struct BenchStressArgs {
+    /// JSON Lines instead of a table.
+    #[arg(long)]
+    pub json: bool,
+    /// Run every scenario this many times longer than the test suite does, 0.01..=1000.
+    #[arg(
+        long,
+        default_value_t = 10.0,
+        allow_negative_numbers = true,
+        value_name = "X"
+    )]
+    pub scale: f64,
+}
+
+/// `bench physics`'s flags.
+#[derive(Debug, Args)]
+pub struct BenchPhysicsArgs {
+    /// JSON Lines instead of a table.
+    #[arg(long)]
+    pub json: bool,
+    /// Also draw the work-precision diagram (log error against log CPU time) here.
+    #[arg(long, value_name = "FILE.svg")]
+    pub plot: Option<PathBuf>,
+    /// Simulated seconds per run, 0.1..=3600.
+    #[arg(
+        long,
+        default_value_t = 60.0,
+        allow_negative_numbers = true,
+        value_name = "S"
+    )]
+    pub duration: f64,
+    /// Smallest step of the sweep (s), 1e-7..=1e-2 (the sweep runs from 1e-2 down).
+    #[arg(
+        long,
+        default_value_t = 1e-5,
+        allow_negative_numbers = true,
+        value_name = "S"
+    )]
+    pub min_dt: f64,
+}
+
+/// `bench render`'s flags.
+#[derive(Debug, Args)]
+pub struct BenchRenderArgs {
+    /// JSON Lines instead of a table.
+    #[arg(long)]
+    pub json: bool,
+    /// Frames timed per thread count (the median is reported), 1..=10000.
+    #[arg(
+        long,
+        default_value_t = 15,
+        allow_negative_numbers = true,
+        value_name = "N"
+    )]
+    pub frames: i64,
+}
+
+/// `simulate`'s flags.
+#[derive(Debug, Args)]
+pub struct SimulateArgs {
+    /// Simulated time (s), 0..=1e7.
+    #[arg(long, default_value_t = 10.0, allow_negative_numbers = true)]
+    pub duration: f64,
+    /// Sampling interval (s), > 0, at most 1e8 samples in all.
+    #[arg(long, default_value_t = 0.01, allow_negative_numbers = true)]
+    pub every: f64,
+}
+
+/// Contact model names on the command line.
+#[derive(Debug, Clone, Copy, ValueEnum)]
+pub enum ContactFlag {
+    /// Instantaneous impacts with restitution.
+    Ideal,
+    /// Soft Hertz spheres.
+    Hertz,
+}
+
+/// Integrator names on the command line.
+#[derive(Debug, Clone, Copy, ValueEnum)]
+pub enum IntegratorFlag {
+    /// Closed-form flight, root-found impacts.
+    Exact,
+    /// Semi-implicit Euler.
+    Euler,
+    /// Stormer-Verlet.
+    Verlet,
+    /// Classic Runge-Kutta 4.
+    Rk4,
+    /// Yoshida 4th order.
+    Yoshida4,
+}
+
+/// The common overrides (DESIGN.md): each replaces one config field.
+#[derive(Debug, Clone, Args, Default)]
+pub struct Common {
+    /// Config asset (default: ./assets/cradle.ron if present, else the built-in one).
+    #[arg(long, global = true, value_name = "PATH")]
+    pub config: Option<PathBuf>,
+    /// Number of balls, 1..=200.
+    #[arg(long, global = true, allow_negative_numbers = true, value_name = "N")]
+    pub balls: Option<i64>,
+    /// Balls lifted from the left, 0..=balls.
+    #[arg(long, global = true, allow_negative_numbers = true, value_name = "K")]
+    pub lift: Option<i64>,
+    /// Lift angle (degrees), 0 <= DEG < 180.
+    #[arg(long, global = true, allow_negative_numbers = true, value_name = "DEG")]
+    pub angle: Option<f64>,
+    /// Gap between neighbouring balls at rest (m), >= 0.
+    #[arg(long, global = true, allow_negative_numbers = true, value_name = "M")]
+    pub gap: Option<f64>,
+    /// Contact model.
+    #[arg(long, global = true, value_enum)]
+    pub contact: Option<ContactFlag>,
+    /// Integrator.
+    #[arg(long, global = true, value_enum)]
+    pub integrator: Option<IntegratorFlag>,
+    /// Step of the fixed-step integrators (s), 1e-7..=0.1.
+    #[arg(long, global = true, allow_negative_numbers = true, value_name = "S")]
+    pub dt: Option<f64>,
+    /// Tracing threads, 0..=256 (0 = every core).
+    #[arg(long, global = true, allow_negative_numbers = true, value_name = "N")]
+    pub threads: Option<i64>,
+    /// Picture width (pixels), 16..=8192.
+    #[arg(long, global = true, allow_negative_numbers = true, value_name = "W")]
+    pub width: Option<i64>,
+    /// Picture height (pixels), 16..=8192.
+    #[arg(long, global = true, allow_negative_numbers = true, value_name = "H")]
+    pub height: Option<i64>,
+}

@@ -1,0 +1,277 @@
+//! The command line parsed and checked once into a typed [`Job`]: each
+//! subcommand's own flags first (before anything is loaded), then the config with
+//! the common overrides. `main` only dispatches the job.
+
+use super::args::{
+    BenchCommand, BenchPhysicsArgs, BenchQualityArgs, BenchRenderArgs, BenchStressArgs, Cli,
+    Command, Common, RenderArgs, SimulateArgs,
+};
+use super::overrides::{InputError, flag_value};
+use crate::bench::physics::Plan;
+use crate::config::{Config, ConfigSource};
+use crate::headless::Output;
+use std::path::PathBuf;
+
+/// What the program was asked to do, with every value checked.
+#[derive(Debug)]
+pub enum Job {
+    /// Open the window.
+    Run {
+        /// The config with the overrides applied.
+        config: Config,
+        /// Where it came from (watched for hot reload).
+        source: ConfigSource,
+        /// The overrides, applied again to each reload.
+        overrides: Common,
+    },
+    /// `simulate`: JSON Lines of the state.
+    Simulate {
+        /// The config.
+        config: Config,
+        /// Simulated seconds.
+        duration: f64,
+        /// Sampling interval (s).
+        every: f64,
+    },
+    /// `render`: frames without a window.
+    Render {
+        /// The config.
+        config: Config,
+        /// Simulated time of the first frame (s).
+        time: f64,
+        /// What to write.
+        output: Output,
+    },
+    /// `bench render`.
+    BenchRender {
+        /// The config.
+        config: Config,
+        /// Thread counts to time.
+        threads: Vec<usize>,
+        /// Frames timed per thread count.
+        frames: u32,
+        /// JSON Lines instead of a table.
+        json: bool,
+    },
+    /// `bench physics`.
+    BenchPhysics {
+        /// The sweep.
+        plan: Plan,
+        /// JSON Lines instead of a table.
+        json: bool,
+        /// Where to draw the diagram.
+        plot: Option<PathBuf>,
+    },
+    /// `bench stress`.
+    BenchStress {
+        /// Durations relative to the test suite's.
+        scale: f64,
+        /// JSON Lines instead of a table.
+        json: bool,
+    },
+    /// `bench render-quality`.
+    BenchQuality {
+        /// The config.
+        config: Config,
+        /// Frames timed per row.
+        frames: u32,
+        /// JSON Lines instead of a table.
+        json: bool,
+        /// Where to draw the plot.
+        plot: Option<PathBuf>,
+    },
+}
+
+impl Job {
+    /// Checks the command line and loads the config it names.
+    ///
+    /// # Errors
+    /// A flag out of range or a bad config asset (exit code 2).
+    pub fn from_cli(cli: Cli) -> Result<Self, InputError> {
+        let common = cli.common;
+        let load = || -> Result<Config, InputError> {
+            let (config, source) = common.load()?;
+            tracing::info!("config: {source}");
+            Ok(config)
+        };
+        Ok(match cli.command {
+            None | Some(Command::Run) => {
+                let (config, source) = common.load()?;
+                tracing::info!("config: {source}");
+                Self::Run {
+                    config,
+                    source,
+                    overrides: common,
+                }
+            }
+            Some(Command::Simulate(a)) => {
+                check_simulate(&a)?;
+                Self::Simulate {
+                    config: load()?,
+                    duration: a.duration,
+                    every: a.every,
+                }
+            }
+            Some(Command::Render(a)) => {
+                let output = render_output(&a)?;
+                Self::Render {
+                    config: load()?,
+                    time: a.time,
+                    output,
+                }
+            }
+            Some(Command::Bench(BenchCommand::Render(a))) => {
+                let frames = bench_frames(&a)?;
+                let config = load()?;
+                let cores = std::thread::available_parallelism().map_or(1, std::num::NonZero::get);
+                let threads = if config.render.threads > 0 {
+                    vec![config.render.threads]
+                } else {
+                    (1..=cores).collect()
+                };
+                Self::BenchRender {
+                    config,
+                    threads,
+                    frames,
+                    json: a.json,
+                }
+            }
+            Some(Command::Bench(BenchCommand::Physics(a))) => {
+                let dts = bench_physics_dts(&a)?;
+                let config = load()?;
+                Self::BenchPhysics {
+                    plan: Plan {
+                        params: config.cradle_params(),
+                        angles_deg: common.angle.map_or(vec![30.0, 170.0], |a| vec![a]),
+                        duration: a.duration,
+                        dts,
+                        sample_every: 0.01,
+                    },
+                    json: a.json,
+                    plot: a.plot,
+                }
+            }
+            Some(Command::Bench(BenchCommand::Stress(a))) => {
+                let scale = bench_stress_scale(&a)?;
+                // The scenarios are fixed, but a bad asset or flag is still refused.
+                load()?;
+                Self::BenchStress {
+                    scale,
+                    json: a.json,
+                }
+            }
+            Some(Command::Bench(BenchCommand::RenderQuality(a))) => {
+                let frames = quality_frames(&a)?;
+                Self::BenchQuality {
+                    config: load()?,
+                    frames,
+                    json: a.json,
+                    plot: a.plot,
+                }
+            }
+        })
+    }
+}
+
+/// Checks `bench stress`' flags.
+///
+/// # Errors
+/// A flag out of range.
+fn bench_stress_scale(a: &BenchStressArgs) -> Result<f64, InputError> {
+    let ok = a.scale.is_finite() && (0.01..=1000.0).contains(&a.scale);
+    flag_value("--scale", a.scale, ok, "0.01..=1000")
+}
+
+/// Checks `simulate`'s own flags.
+///
+/// # Errors
+/// A flag out of range, with its range.
+fn check_simulate(a: &SimulateArgs) -> Result<(), InputError> {
+    let ok = a.duration.is_finite() && (0.0..=1e7).contains(&a.duration);
+    flag_value("--duration", a.duration, ok, "0..=1e7 (s)")?;
+    let ok = a.every.is_finite() && a.every > 0.0;
+    flag_value("--every", a.every, ok, "> 0 (s)")?;
+    if a.duration / a.every > 1e8 {
+        return Err(InputError::Flag(format!(
+            "--every {}: too small for --duration {}; allowed: at most 1e8 samples (every >= duration / 1e8)",
+            a.every, a.duration
+        )));
+    }
+    Ok(())
+}
+
+/// Checks `render`'s flags and says what to write.
+///
+/// # Errors
+/// A flag out of range or a missing output, with what is allowed.
+fn render_output(a: &RenderArgs) -> Result<crate::headless::Output, InputError> {
+    use crate::headless::Output;
+    let ok = a.time.is_finite() && (0.0..=1e6).contains(&a.time);
+    flag_value("--time", a.time, ok, "0..=1e6 (s)")?;
+    let ok = a.fps.is_finite() && a.fps > 0.0 && a.fps <= 1000.0;
+    flag_value("--fps", a.fps, ok, "> 0 and <= 1000")?;
+    let frames = match a.frames {
+        None => None,
+        Some(n) => {
+            Some(flag_value("--frames", n, (1..=100_000).contains(&n), "1..=100000")? as u32)
+        }
+    };
+    match (&a.out, &a.gif, frames) {
+        (Some(_), Some(_), _) => Err(InputError::Flag(
+            "give either --out or --gif, not both".into(),
+        )),
+        (None, Some(gif), frames) => Ok(Output::Gif {
+            path: gif.clone(),
+            frames: frames.unwrap_or(60),
+            fps: a.fps,
+        }),
+        (Some(dir), None, Some(frames)) => Ok(Output::Sequence {
+            dir: dir.clone(),
+            frames,
+            fps: a.fps,
+        }),
+        (Some(png), None, None) => Ok(Output::Png(png.clone())),
+        (None, None, _) => Err(InputError::Flag(
+            "say where to write: --out FILE.png, --frames N --out DIR/, or --gif FILE.gif".into(),
+        )),
+    }
+}
+
+/// Checks `bench physics`' flags; returns the steps of the sweep.
+///
+/// # Errors
+/// A flag out of range.
+fn bench_physics_dts(a: &BenchPhysicsArgs) -> Result<Vec<f64>, InputError> {
+    let ok = a.duration.is_finite() && (0.1..=3600.0).contains(&a.duration);
+    flag_value("--duration", a.duration, ok, "0.1..=3600 (s)")?;
+    let ok = a.min_dt.is_finite() && (1e-7..=1e-2).contains(&a.min_dt);
+    flag_value("--min-dt", a.min_dt, ok, "1e-7..=1e-2 (s)")?;
+    // Three steps per decade from 1e-2 down to min_dt.
+    let mut dts = Vec::new();
+    for i in 0.. {
+        let dt = 1e-2 * 10f64.powf(-f64::from(i) / 3.0);
+        if dt < a.min_dt * (1.0 - 1e-9) {
+            break;
+        }
+        dts.push(dt);
+    }
+    Ok(dts)
+}
+
+/// Checks `bench render`'s flags; returns the frames per thread count.
+///
+/// # Errors
+/// A flag out of range.
+fn bench_frames(a: &BenchRenderArgs) -> Result<u32, InputError> {
+    let ok = (1..=10_000).contains(&a.frames);
+    flag_value("--frames", a.frames, ok, "1..=10000").map(|f| f as u32)
+}
+
+/// Checks `bench render-quality`'s flags; returns the frames per row.
+///
+/// # Errors
+/// A flag out of range.
+fn quality_frames(a: &BenchQualityArgs) -> Result<u32, InputError> {
+    let ok = (1..=1000).contains(&a.frames);
+    flag_value("--frames", a.frames, ok, "1..=1000").map(|f| f as u32)
+}

@@ -1,0 +1,156 @@
+//! What the tracer sees besides the objects, worked out once per spawn: the
+//! camera (moved back by `camera.fit` until the frame is in view, using the
+//! tracer's own projection), the lights, the render settings, and the box the
+//! moving objects stay in (from the physics' energy bound). Spawning stores them
+//! in the flat scene; `extract` then only copies transforms.
+
+use super::spawn::Layout;
+use crate::config::{CameraConfig, Config, LightConfig, Vec3 as CVec3};
+use crate::physics::params::swing_bound;
+use crate::trace::{self, camera::CameraRays};
+use glam::{DVec3, Vec2, Vec3};
+
+/// A config vector in the tracer's f32.
+pub(crate) fn f32x3(a: CVec3) -> Vec3 {
+    Vec3::new(a[0] as f32, a[1] as f32, a[2] as f32)
+}
+
+/// The frame's eight corners (posts, rails and feet, with their thickness).
+#[must_use]
+pub fn frame_corners(config: &Config) -> [DVec3; 8] {
+    let c = &config.cradle;
+    let layout = Layout::new(config);
+    let (x, top, z) = (
+        layout.half_width + c.frame_radius,
+        c.pivot_height + c.frame_radius,
+        c.rail_spread + c.frame_radius,
+    );
+    [
+        DVec3::new(-x, 0.0, -z),
+        DVec3::new(x, 0.0, -z),
+        DVec3::new(-x, 0.0, z),
+        DVec3::new(x, 0.0, z),
+        DVec3::new(-x, top, -z),
+        DVec3::new(x, top, -z),
+        DVec3::new(-x, top, z),
+        DVec3::new(x, top, z),
+    ]
+}
+
+/// A config camera as the tracer's.
+#[must_use]
+pub fn camera(cam: &CameraConfig) -> trace::Camera {
+    trace::Camera {
+        position: f32x3(cam.position),
+        look_at: f32x3(cam.look_at),
+        fov_deg: cam.fov_deg as f32,
+    }
+}
+
+/// The camera of `config`, with `camera.fit` moved back along its line of sight
+/// until every corner of the frame projects (by the tracer's projection) inside
+/// the middle 95% of the picture. A camera that sees the frame already, or looks
+/// straight down, is left as it is.
+#[must_use]
+pub fn fitted_camera(config: &Config) -> CameraConfig {
+    let mut cam = config.camera.clone();
+    let (w, h) = (config.render.width, config.render.height);
+    let corners = frame_corners(config);
+    let (lo, hi) = (
+        0.025 * Vec2::new(w as f32, h as f32),
+        0.975 * Vec2::new(w as f32, h as f32),
+    );
+    let inside = |cam: &CameraConfig| {
+        let rays = CameraRays::new(&camera(cam), w, h);
+        corners.iter().all(|&p| {
+            rays.project(p.as_vec3()).is_some_and(|(x, y)| {
+                let at = Vec2::new(x, y);
+                at.cmpge(lo).all() && at.cmple(hi).all()
+            })
+        })
+    };
+    let look = DVec3::from(cam.look_at);
+    let back = DVec3::from(cam.position) - look;
+    if !cam.fit || inside(&cam) || back.normalize().cross(DVec3::Y).length() < 1e-6 {
+        return cam;
+    }
+    // 2% further each step: at most ~350 steps to 1000 times the distance.
+    for i in 1..=350 {
+        cam.position = (look + back * 1.02_f64.powi(i)).to_array();
+        if inside(&cam) {
+            break;
+        }
+    }
+    cam
+}
+
+/// A config light as the tracer's, its colour times its intensity.
+#[must_use]
+pub fn light(l: &LightConfig) -> trace::Light {
+    let lit = |color: CVec3, intensity: f64| f32x3(color) * intensity as f32;
+    match l {
+        LightConfig::Ambient { color, intensity } => trace::Light::Ambient {
+            color: lit(*color, *intensity),
+        },
+        LightConfig::Point {
+            position,
+            color,
+            intensity,
+        } => trace::Light::Point {
+            position: f32x3(*position),
+            color: lit(*color, *intensity),
+        },
+        LightConfig::Directional {
+            direction,
+            color,
+            intensity,
+        } => trace::Light::Directional {
+            direction: f32x3(*direction).normalize(),
+            color: lit(*color, *intensity),
+        },
+    }
+}
+
+/// A box holding every position balls and strings can take at any time: the
+/// physics' energy bound on the swing ([`swing_bound`]), strings running from the
+/// rails (at `+-rail_spread`, height `pivot_height`) to the balls.
+#[must_use]
+pub fn motion_bounds(config: &Config) -> (Vec3, Vec3) {
+    let layout = Layout::new(config);
+    let c = &config.cradle;
+    let theta_max = swing_bound(
+        config.physics.integrator,
+        config.start.lift,
+        config.lift_angle(),
+    );
+    let side = c.length * theta_max.min(std::f64::consts::FRAC_PI_2).sin();
+    let reach = c.radius + c.string_radius;
+    let (first, last) = (layout.pivot(0), layout.pivot(c.balls - 1));
+    let top = (first.y - c.length * theta_max.cos()).max(first.y);
+    let z = c.rail_spread + c.string_radius;
+    let lo = DVec3::new(first.x - side - reach, first.y - c.length - reach, -z);
+    let hi = DVec3::new(last.x + side + reach, top + reach, z);
+    // f32 rounding of the corners must not shrink the box: widen by a micrometre.
+    (
+        lo.as_vec3() - Vec3::splat(1e-6),
+        hi.as_vec3() + Vec3::splat(1e-6),
+    )
+}
+
+/// The flat scene of `config` without objects: camera, lights and render settings,
+/// ready for `extract` to add the objects each frame.
+#[must_use]
+pub fn static_scene(config: &Config) -> trace::Scene {
+    let r = &config.render;
+    trace::Scene {
+        objects: Vec::new(),
+        lights: config.lights.iter().map(light).collect(),
+        camera: camera(&fitted_camera(config)),
+        background: f32x3(r.background),
+        size: (r.width, r.height),
+        max_depth: r.max_depth,
+        samples: r.samples,
+        adaptive: r.adaptive.then_some(r.adaptive_threshold as f32),
+        motion_bounds: Some(motion_bounds(config)),
+    }
+}
