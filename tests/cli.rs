@@ -1,32 +1,11 @@
 //! The binary's contracts (DESIGN.md): exit codes, located messages, the JSON Lines
 //! of `simulate`, and which asset is used.
 
-use serde_json::Value;
+mod common;
+
+use common::{lines, run, run_in, stderr, temp_dir};
 use std::path::Path;
-use std::process::{Command, Output};
-
-fn run_in(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_newtons-cradle"))
-        .args(args)
-        .current_dir(dir)
-        .env("RUST_LOG", "info")
-        .output()
-        .expect("the binary runs")
-}
-
-fn run(args: &[&str]) -> Output {
-    run_in(Path::new(env!("CARGO_MANIFEST_DIR")), args)
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-fn temp_dir(name: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("nc-cli-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir
-}
+use std::process::Command;
 
 #[test]
 fn bad_flags_exit_2_with_the_valid_range() {
@@ -112,14 +91,6 @@ fn bad_config_files_exit_2_with_file_line_and_column() {
         assert!(!stderr(&o).contains("panicked"));
     }
     std::fs::remove_dir_all(&dir).ok();
-}
-
-fn lines(o: &Output) -> Vec<Value> {
-    String::from_utf8(o.stdout.clone())
-        .expect("utf-8")
-        .lines()
-        .map(|l| serde_json::from_str(l).expect("every line is JSON"))
-        .collect()
 }
 
 #[test]
@@ -343,131 +314,6 @@ fn render_refuses_unwritable_paths_and_missing_outputs_with_exit_2() {
         stderr(&o)
     );
     std::fs::remove_dir_all(&dir).ok();
-}
-
-#[test]
-fn bench_render_prints_full_and_incremental_json_lines_per_thread_count() {
-    let o = run(&[
-        "bench", "render", "--json", "--frames", "2", "--width", "48", "--height", "24",
-    ]);
-    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
-    let v = lines(&o);
-    let cores = std::thread::available_parallelism().map_or(1, std::num::NonZero::get);
-    assert_eq!(
-        v.len(),
-        2 * cores,
-        "a full and an incremental row per thread count"
-    );
-    for (i, row) in v.iter().enumerate() {
-        assert_eq!(row["threads"].as_u64(), Some(i as u64 / 2 + 1));
-        assert_eq!(row["mode"], if i % 2 == 0 { "full" } else { "incremental" });
-        assert_eq!(
-            (row["width"].as_u64(), row["height"].as_u64()),
-            (Some(48), Some(24))
-        );
-        assert_eq!(row["frames"].as_u64(), Some(2));
-        assert!(row["ms_median"].as_f64().is_some_and(|ms| ms > 0.0));
-    }
-}
-
-#[test]
-fn bench_physics_prints_each_integrator_and_step_and_plots() {
-    let dir = temp_dir("bench-physics");
-    let svg = dir.join("wp.svg");
-    let o = run(&[
-        "bench",
-        "physics",
-        "--json",
-        "--duration",
-        "2",
-        "--min-dt",
-        "1e-3",
-        "--angle",
-        "30",
-        "--plot",
-        svg.to_str().unwrap(),
-    ]);
-    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
-    let v = lines(&o);
-    // exact once, then 4 integrators x 1e-2, 4.6e-3, 2.2e-3, 1e-3.
-    assert_eq!(v.len(), 1 + 4 * 4, "{v:?}");
-    assert_eq!(v[0]["integrator"], "exact");
-    assert!(v[0]["dt"].is_null());
-    for row in &v {
-        assert!(row["error"].as_f64().is_some_and(|e| e >= 0.0), "{row}");
-        assert!(
-            row["cpu_seconds"].as_f64().is_some_and(|s| s > 0.0),
-            "{row}"
-        );
-    }
-    // Halving the step of rk4 cuts its error: the sweep measures convergence.
-    let rk4: Vec<f64> = v
-        .iter()
-        .filter(|r| r["integrator"] == "rk4")
-        .map(|r| r["error"].as_f64().unwrap())
-        .collect();
-    assert!(rk4.windows(2).all(|w| w[1] < w[0]), "{rk4:?}");
-    let text = std::fs::read_to_string(&svg).expect("the plot is written");
-    assert!(text.starts_with("<svg") && text.contains("yoshida4"));
-    std::fs::remove_dir_all(&dir).ok();
-}
-
-#[test]
-fn bench_flags_out_of_range_exit_2() {
-    let cases: [(&[&str], &str); 4] = [
-        (
-            &["bench", "physics", "--duration", "0"],
-            "--duration 0: not allowed; allowed: 0.1..=3600",
-        ),
-        (
-            &["bench", "physics", "--min-dt", "1"],
-            "--min-dt 1: not allowed; allowed: 1e-7..=1e-2",
-        ),
-        (
-            &["bench", "stress", "--scale", "-1"],
-            "--scale -1: not allowed; allowed: 0.01..=1000",
-        ),
-        (
-            &["bench", "render-quality", "--frames", "0"],
-            "--frames 0: not allowed; allowed: 1..=1000",
-        ),
-    ];
-    for (args, want) in cases {
-        let o = run(args);
-        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
-        assert!(stderr(&o).contains(want), "{args:?}: {}", stderr(&o));
-    }
-}
-
-#[test]
-fn bench_render_quality_rows_per_mode_and_depth() {
-    let o = run(&[
-        "bench",
-        "render-quality",
-        "--json",
-        "--frames",
-        "1",
-        "--width",
-        "40",
-        "--height",
-        "20",
-    ]);
-    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
-    let v = lines(&o);
-    assert_eq!(v.len(), 4 * 6, "4 modes x depths 0..=5");
-    for row in &v {
-        assert!(row["rmse"].as_f64().is_some_and(|e| e >= 0.0), "{row}");
-        assert!(
-            row["ms_median"].as_f64().is_some_and(|ms| ms > 0.0),
-            "{row}"
-        );
-    }
-    // 16 samples compared with themselves: no error, so no finite PSNR.
-    assert!(
-        v.iter()
-            .filter(|r| r["mode"] == "16 spp")
-            .all(|r| r["psnr_vs_16"].is_null())
-    );
 }
 
 #[test]

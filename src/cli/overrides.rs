@@ -123,7 +123,9 @@ impl Common {
 
 /// Names the flag that set a field, or says which field of the asset a flag broke.
 fn flag_message(e: &FieldError, given: &[(&str, &str, String)]) -> String {
-    if let Some((_, flag, raw)) = given.iter().find(|(field, _, _)| *field == e.path) { format!("{flag} {raw}: not allowed; allowed: {}", e.allowed) } else {
+    if let Some((_, flag, raw)) = given.iter().find(|(field, _, _)| *field == e.path) {
+        format!("{flag} {raw}: not allowed; allowed: {}", e.allowed)
+    } else {
         let flags: Vec<&str> = given.iter().map(|g| g.1).collect();
         format!("{e} (after applying {})", flags.join(", "))
     }
