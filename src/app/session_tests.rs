@@ -25,6 +25,16 @@ fn session() -> Session {
     session_with(ConfigSource::Builtin)
 }
 
+/// A config file holding `text` in a fresh folder named for `test`; returns the
+/// folder (to remove) and the file.
+fn asset(test: &str, text: &str) -> (std::path::PathBuf, std::path::PathBuf) {
+    let dir = std::env::temp_dir().join(format!("nc-session-{test}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let path = dir.join("cradle.ron");
+    std::fs::write(&path, text).expect("write");
+    (dir, path)
+}
+
 /// Steps `n` frames of 1/60 s each from `start`.
 fn frames(s: &mut Session, start: Instant, n: u32) -> Instant {
     let mut now = start;
@@ -129,10 +139,7 @@ fn hud_cycles_status_help_and_off_but_errors_stay() {
 
 #[test]
 fn a_bad_reload_keeps_the_scene_and_shows_where() {
-    let dir = std::env::temp_dir().join(format!("nc-session-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    let path = dir.join("cradle.ron");
-    std::fs::write(&path, "(cradle: (balls: 7))").expect("write");
+    let (dir, path) = asset("reload", "(cradle: (balls: 7))");
     let mut s = session_with(ConfigSource::File(path.clone()));
     s.reload(|_, _| Ok(()));
     assert_eq!(s.config().cradle.balls, 7, "a good save applies");
@@ -154,10 +161,7 @@ fn a_bad_reload_keeps_the_scene_and_shows_where() {
 
 #[test]
 fn a_refused_framebuffer_keeps_the_scene() {
-    let dir = std::env::temp_dir().join(format!("nc-session-fb-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    let path = dir.join("cradle.ron");
-    std::fs::write(&path, "(cradle: (balls: 4))").expect("write");
+    let (dir, path) = asset("framebuffer", "(cradle: (balls: 4))");
     let mut s = session_with(ConfigSource::File(path.clone()));
     // No overrides for the size here: the asset's 1200x600 differs from 32x16.
     s.overrides = Common::default();
