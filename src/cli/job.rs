@@ -89,15 +89,10 @@ impl Job {
     /// A flag out of range or a bad config asset (exit code 2).
     pub fn from_cli(cli: Cli) -> Result<Self, InputError> {
         let common = cli.common;
-        let load = || -> Result<Config, InputError> {
-            let (config, source) = common.load()?;
-            tracing::info!("config: {source}");
-            Ok(config)
-        };
+        let asset = || load(&common).map(|(config, _)| config);
         Ok(match cli.command {
             None | Some(Command::Run) => {
-                let (config, source) = common.load()?;
-                tracing::info!("config: {source}");
+                let (config, source) = load(&common)?;
                 Self::Run {
                     config,
                     source,
@@ -107,7 +102,7 @@ impl Job {
             Some(Command::Simulate(a)) => {
                 check_simulate(&a)?;
                 Self::Simulate {
-                    config: load()?,
+                    config: asset()?,
                     duration: a.duration,
                     every: a.every,
                 }
@@ -115,14 +110,14 @@ impl Job {
             Some(Command::Render(a)) => {
                 let output = render_output(&a)?;
                 Self::Render {
-                    config: load()?,
+                    config: asset()?,
                     time: a.time,
                     output,
                 }
             }
             Some(Command::Bench(BenchCommand::Render(a))) => {
                 let frames = bench_frames(&a)?;
-                let config = load()?;
+                let config = asset()?;
                 let cores = std::thread::available_parallelism().map_or(1, std::num::NonZero::get);
                 let threads = if config.render.threads > 0 {
                     vec![config.render.threads]
@@ -138,7 +133,7 @@ impl Job {
             }
             Some(Command::Bench(BenchCommand::Physics(a))) => {
                 let dts = bench_physics_dts(&a)?;
-                let config = load()?;
+                let config = asset()?;
                 Self::BenchPhysics {
                     plan: Plan {
                         params: config.cradle_params(),
@@ -154,7 +149,7 @@ impl Job {
             Some(Command::Bench(BenchCommand::Stress(a))) => {
                 let scale = bench_stress_scale(&a)?;
                 // The scenarios are fixed, but a bad asset or flag is still refused.
-                load()?;
+                asset()?;
                 Self::BenchStress {
                     scale,
                     json: a.json,
@@ -163,7 +158,7 @@ impl Job {
             Some(Command::Bench(BenchCommand::RenderQuality(a))) => {
                 let frames = quality_frames(&a)?;
                 Self::BenchQuality {
-                    config: load()?,
+                    config: asset()?,
                     frames,
                     json: a.json,
                     plot: a.plot,
@@ -171,6 +166,13 @@ impl Job {
             }
         })
     }
+}
+
+/// The config the common flags name, with their overrides; the log says which.
+fn load(common: &Common) -> Result<(Config, ConfigSource), InputError> {
+    let (config, source) = common.load()?;
+    tracing::info!("config: {source}");
+    Ok((config, source))
 }
 
 /// Checks `bench stress`' flags.
