@@ -96,8 +96,9 @@ fn run(job: Job) -> Result<(), Failure> {
             config,
             threads,
             frames,
+            modes,
             json,
-        } => bench::render::report(&config, &threads, frames, json, &mut out)?,
+        } => bench::render::report(&config, &threads, frames, &modes, json, &mut out)?,
         Job::BenchPhysics { plan, json, plot } => {
             bench::physics::report(&plan, json, plot.as_deref(), &mut out)?;
         }

@@ -31,6 +31,38 @@ fn bench_render_prints_full_and_incremental_json_lines_per_thread_count() {
 }
 
 #[test]
+fn bench_render_mode_times_one_mode_alone() {
+    for (mode, want) in [("full", "full"), ("incremental", "incremental")] {
+        let o = run(&[
+            "bench",
+            "render",
+            "--json",
+            "--frames",
+            "1",
+            "--threads",
+            "1",
+            "--width",
+            "32",
+            "--height",
+            "16",
+            "--mode",
+            mode,
+        ]);
+        assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+        let v = lines(&o);
+        assert_eq!(v.len(), 1, "one row for one thread count and one mode");
+        assert_eq!(v[0]["mode"], want);
+    }
+    let o = run(&["bench", "render", "--mode", "fast"]);
+    assert_eq!(o.status.code(), Some(2), "an unknown mode is bad input");
+    assert!(
+        stderr(&o).contains("full"),
+        "names the modes: {}",
+        stderr(&o)
+    );
+}
+
+#[test]
 fn bench_physics_prints_each_integrator_and_step_and_plots() {
     let dir = temp_dir("bench-physics");
     let svg = dir.join("wp.svg");

@@ -31,7 +31,9 @@ pub struct Row {
 }
 
 /// Times `frames` frames of the swinging cradle (60 fps of simulated time, after two
-/// warm-up frames) with each thread count in `threads`; calls `each` per row.
+/// warm-up frames) with each thread count in `threads`, in each of `modes`
+/// (`full`: every pixel traced afresh; `incremental`: only what motion changed);
+/// calls `each` per row.
 ///
 /// # Errors
 /// When a thread pool cannot be built.
@@ -39,12 +41,13 @@ pub fn bench_render(
     config: &Config,
     threads: &[usize],
     frames: u32,
+    modes: &[&'static str],
     mut each: impl FnMut(&Row),
 ) -> anyhow::Result<Vec<Row>> {
     let mut rows = Vec::new();
     for &n in threads {
         let pool = trace::pool(n)?;
-        for mode in ["full", "incremental"] {
+        for &mode in modes {
             let mut world = CradleWorld::new(config);
             world.set_running(true);
             let mut inc = trace::Incremental::new();
@@ -93,6 +96,7 @@ pub fn report(
     config: &Config,
     threads: &[usize],
     frames: u32,
+    modes: &[&'static str],
     json: bool,
     out: &mut impl Write,
 ) -> anyhow::Result<()> {
@@ -109,7 +113,7 @@ pub fn report(
     }
     let mut base = None;
     let mut written = Ok(());
-    bench_render(config, threads, frames, |row| {
+    bench_render(config, threads, frames, modes, |row| {
         let line = if json {
             serde_json::to_string(row).expect("a row of numbers and names serializes")
         } else {

@@ -150,6 +150,21 @@ pub struct BenchRenderArgs {
         value_name = "N"
     )]
     pub frames: i64,
+    /// Which frames to time: every pixel traced afresh, only what motion changed,
+    /// or both.
+    #[arg(long, value_enum, default_value_t = BenchMode::Both)]
+    pub mode: BenchMode,
+}
+
+/// `bench render --mode`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum BenchMode {
+    /// Every pixel traced afresh each frame, nothing reused.
+    Full,
+    /// Only the pixels motion can change re-traced.
+    Incremental,
+    /// Full, then incremental.
+    Both,
 }
 
 /// `simulate`'s flags.

@@ -3,8 +3,8 @@
 //! the common overrides. `main` only dispatches the job.
 
 use super::args::{
-    BenchCommand, BenchPhysicsArgs, BenchQualityArgs, BenchRenderArgs, BenchStressArgs, Cli,
-    Command, Common, RenderArgs, SimulateArgs,
+    BenchCommand, BenchMode, BenchPhysicsArgs, BenchQualityArgs, BenchRenderArgs, BenchStressArgs,
+    Cli, Command, Common, RenderArgs, SimulateArgs,
 };
 use super::overrides::{InputError, flag_value};
 use crate::bench::physics::Plan;
@@ -50,6 +50,8 @@ pub enum Job {
         threads: Vec<usize>,
         /// Frames timed per thread count.
         frames: u32,
+        /// Which modes to time: `full`, `incremental` or both.
+        modes: Vec<&'static str>,
         /// JSON Lines instead of a table.
         json: bool,
     },
@@ -124,10 +126,16 @@ impl Job {
                 } else {
                     (1..=cores).collect()
                 };
+                let modes = match a.mode {
+                    BenchMode::Full => vec!["full"],
+                    BenchMode::Incremental => vec!["incremental"],
+                    BenchMode::Both => vec!["full", "incremental"],
+                };
                 Self::BenchRender {
                     config,
                     threads,
                     frames,
+                    modes,
                     json: a.json,
                 }
             }

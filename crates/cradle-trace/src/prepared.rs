@@ -4,7 +4,7 @@
 
 use super::bvh::Bvh;
 use super::geometry::{Aabb, Cylinder, Ray, hit_plane, hit_sphere};
-use super::scene::{Scene, Shape};
+use super::scene::{Light, Scene, Shape};
 use super::shadow::Footprints;
 use glam::Vec3;
 use std::cell::Cell;
@@ -41,6 +41,41 @@ pub(crate) fn bounds(shape: &Shape) -> Option<Aabb> {
     }
 }
 
+/// The bounded objects (in query order) that can block a shadow ray towards
+/// `light` from a point of the object with box `from`.
+///
+/// Such a ray starts within `from` (lifted 2e-5 m off its surface) and runs to
+/// the light (or, for a directional light, away along it), so every point of it is
+/// within the box's half-diagonal, plus margins for the lift and for rounding,
+/// of the segment from the box's centre to the light. An object can only block it
+/// if its box, widened by that much, meets that segment. Ambient light casts no
+/// shadow rays: no list.
+fn casters(from: Aabb, light: &Light, bounded: &[(usize, Aabb)]) -> Vec<usize> {
+    let centre = (from.min + from.max) * 0.5;
+    let (dir, t_max) = match *light {
+        Light::Ambient { .. } => return Vec::new(),
+        // t in 0..=1 along the segment to the light.
+        Light::Point { position, .. } => (position - centre, 1.0),
+        Light::Directional { direction, .. } => (-direction, f32::INFINITY),
+    };
+    let reach = if t_max.is_finite() { dir.length() } else { 0.0 };
+    let scale = centre.abs().max_element() + reach;
+    let widen = 0.5 * (from.max - from.min).length() + 1e-4 + 1e-4 * scale;
+    let inv = dir.recip();
+    bounded
+        .iter()
+        .filter(|(_, b)| {
+            let t1 = (b.min - widen - centre) * inv;
+            let t2 = (b.max + widen - centre) * inv;
+            let near = t1.min(t2).max_element().max(0.0);
+            let far = t1.max(t2).min_element().min(t_max);
+            // NaN (an axis the segment runs along, at a slab's edge): keep it.
+            near <= far || near.is_nan() || far.is_nan()
+        })
+        .map(|&(i, _)| i)
+        .collect()
+}
+
 /// A shape with what its hit test needs worked out once per frame.
 #[derive(Debug, Clone, Copy)]
 enum Geom {
@@ -72,6 +107,9 @@ pub struct Prepared<'a> {
     /// Per plane, per light: which objects can shadow which part of it; built
     /// only when shadow culling is turned on.
     footprints: Option<Vec<Vec<Option<Footprints>>>>,
+    /// Per bounded object, per light: the objects that can block its shadow rays
+    /// ([`casters`]); built only when shadow culling is turned on.
+    casters: Option<Vec<Vec<Vec<usize>>>>,
     /// Over `bounded`; built only when the hierarchy is turned on.
     bvh: Option<Bvh>,
     bounded: Vec<(usize, Aabb)>,
@@ -108,6 +146,7 @@ impl<'a> Prepared<'a> {
             boxes,
             plane_slot,
             footprints: None,
+            casters: None,
             bvh: None,
             geoms: scene.objects.iter().map(|o| Geom::new(&o.shape)).collect(),
             bounded,
@@ -269,6 +308,20 @@ impl<'a> Prepared<'a> {
                 })
                 .collect()
         });
+        self.casters = on.then(|| {
+            (0..scene.objects.len())
+                .map(|i| {
+                    let Some(b) = bounds(&scene.objects[i].shape) else {
+                        return Vec::new();
+                    };
+                    scene
+                        .lights
+                        .iter()
+                        .map(|l| casters(b, l, &self.bounded))
+                        .collect()
+                })
+                .collect()
+        });
         self
     }
 
@@ -277,23 +330,43 @@ impl<'a> Prepared<'a> {
     /// shadow can fall there are tested. The same answer either way.
     #[must_use]
     pub fn occluded_towards(&self, from: usize, light: usize, ray: &Ray, t_max: f32) -> bool {
-        let footprints = self
-            .plane_slot
-            .get(from)
-            .copied()
-            .flatten()
-            .and_then(|slot| self.footprints.as_ref()?[slot][light].as_ref());
-        self.occluded_by(ray, t_max, footprints)
+        if let Some(list) = self.casters.as_ref().and_then(|c| c.get(from)?.get(light)) {
+            if self.occluded_by_planes(ray, t_max) {
+                return true;
+            }
+            let inv = ray.dir.recip();
+            return list.iter().any(|&i| {
+                self.boxes[i].hit(ray, inv, t_max)
+                    && self.hit_object(i, ray).is_some_and(|(t, _)| t < t_max)
+            });
+        }
+        self.occluded_by(ray, t_max, self.footprints(from, light))
+    }
+
+    /// The footprints of the bounded objects on plane `plane` (an object index)
+    /// from light `light`, when shadow culling is on.
+    pub(crate) fn footprints(&self, plane: usize, light: usize) -> Option<&Footprints> {
+        let slot = self.plane_slot.get(plane).copied().flatten()?;
+        self.footprints.as_ref()?[slot].get(light)?.as_ref()
+    }
+
+    /// [`Self::occluded`] for a shadow ray that only a plane can block (its start
+    /// is where no bounded object casts a shadow: [`Footprints::region_clear`]).
+    #[must_use]
+    pub fn occluded_by_planes(&self, ray: &Ray, t_max: f32) -> bool {
+        self.planes
+            .iter()
+            .any(|&i| self.hit_object(i, ray).is_some_and(|(t, _)| t < t_max))
     }
 
     /// Any hit before `t_max` on a plane, or, inside the box around them all, on a
     /// bounded object (each tested through its own box): all of them, or those
     /// `footprints` leaves for the ray's start.
     fn occluded_by(&self, ray: &Ray, t_max: f32, footprints: Option<&Footprints>) -> bool {
-        let blocks = |i: usize| self.hit_object(i, ray).is_some_and(|(t, _)| t < t_max);
-        if self.planes.iter().any(|&i| blocks(i)) {
+        if self.occluded_by_planes(ray, t_max) {
             return true;
         }
+        let blocks = |i: usize| self.hit_object(i, ray).is_some_and(|(t, _)| t < t_max);
         let inv = ray.dir.recip();
         if !self.group.hit(ray, inv, t_max) {
             return false;

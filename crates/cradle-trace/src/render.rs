@@ -95,7 +95,7 @@ impl<'a> Frame<'a> {
                 let ray = self.camera.ray(x as f32 + dx, y as f32 + dy);
                 match &self.tiles {
                     Some(t) => {
-                        trace_primary(&self.prepared, &ray, t.at(x, y), self.bound, &mut motion)
+                        trace_primary(&self.prepared, &ray, (t, x, y), self.bound, &mut motion)
                     }
                     None => trace(&self.prepared, &ray, 0, 1.0, self.bound, &mut motion),
                 }

@@ -12,10 +12,11 @@ use super::geometry::Ray;
 use super::motion::Motion;
 use super::prepared::{Hit, Prepared};
 use super::scene::{Light, Material};
+use super::tiles::Tiles;
 use glam::Vec3;
 
 /// Secondary rays start this far (m) off the surface, along its normal.
-const SURFACE_OFFSET: f32 = 2e-5;
+pub(crate) const SURFACE_OFFSET: f32 = 2e-5;
 
 /// Half an 8-bit step, divided by the steepest slope of the sRGB encoding.
 const BAILOUT: f32 = 0.5 / 255.0 / 12.92;
@@ -64,23 +65,29 @@ pub fn trace(
     motion: &mut Motion,
 ) -> Vec3 {
     let hit = p.closest(ray, f32::INFINITY);
-    shade(p, ray, hit, depth, weight, bound, motion)
+    shade(p, ray, hit, depth, weight, bound, motion, None)
 }
 
-/// [`trace`] for a primary ray whose possible hits are `candidates` (its tile's).
+/// [`trace`] for the primary ray of pixel `(x, y)`: it tests only its tile's
+/// candidates, and a plane's mirror ray only the tile's mirror candidates.
 #[must_use]
 pub fn trace_primary(
     p: &Prepared<'_>,
     ray: &Ray,
-    candidates: &[usize],
+    (tiles, x, y): (&Tiles, u32, u32),
     bound: f32,
     motion: &mut Motion,
 ) -> Vec3 {
-    let hit = p.closest_among(ray, f32::INFINITY, candidates);
-    shade(p, ray, hit, 0, 1.0, bound, motion)
+    let hit = p.closest_among(ray, f32::INFINITY, tiles.at(x, y));
+    shade(p, ray, hit, 0, 1.0, bound, motion, Some((tiles, x, y)))
 }
 
-/// The radiance of `hit` (or the background for none) seen along `ray`.
+/// The radiance of `hit` (or the background for none) seen along `ray`; `tile`
+/// is the primary ray's pixel, whose tile lists the candidates of mirror rays.
+#[expect(
+    clippy::too_many_arguments,
+    reason = "the recursion's state, passed down"
+)]
 fn shade(
     p: &Prepared<'_>,
     ray: &Ray,
@@ -89,6 +96,7 @@ fn shade(
     weight: f32,
     bound: f32,
     motion: &mut Motion,
+    tile: Option<(&Tiles, u32, u32)>,
 ) -> Vec3 {
     motion.segment(ray, hit.map_or(f32::INFINITY, |h| h.t));
     let Some(hit) = hit else {
@@ -125,7 +133,13 @@ fn shade(
             dir: to_light,
         };
         motion.segment(&shadow, dist);
-        if p.occluded_towards(hit.object, li, &shadow, dist) {
+        let clear = tile.is_some_and(|(t, x, y)| t.shadow_clear(hit.object, li, x, y));
+        let blocked = if clear {
+            p.occluded_by_planes(&shadow, dist)
+        } else {
+            p.occluded_towards(hit.object, li, &shadow, dist)
+        };
+        if blocked {
             continue;
         }
         color += base * light_color * lambert;
@@ -140,14 +154,15 @@ fn shade(
     let r = m.reflective;
     if r > 0.0 && depth < p.scene.max_depth && weight * r * bound >= BAILOUT {
         let dir = ray.dir - 2.0 * ray.dir.dot(n) * n;
-        let reflected = trace(
-            p,
-            &Ray { origin: start, dir },
-            depth + 1,
-            weight * r,
-            bound,
-            motion,
-        );
+        let mirror = Ray { origin: start, dir };
+        let candidates = tile.and_then(|(t, x, y)| t.mirror_at(hit.object, x, y));
+        let reflected = match candidates {
+            Some(c) => {
+                let h = p.closest_among(&mirror, f32::INFINITY, c);
+                shade(p, &mirror, h, depth + 1, weight * r, bound, motion, None)
+            }
+            None => trace(p, &mirror, depth + 1, weight * r, bound, motion),
+        };
         color = color * (1.0 - r) + reflected * r;
     }
     color

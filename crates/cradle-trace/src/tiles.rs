@@ -4,17 +4,26 @@
 //! the query order, so ties resolve the same way too).
 
 use super::camera::CameraRays;
+use super::geometry::{Aabb, hit_plane};
 use super::prepared::Prepared;
+use super::scene::Shape;
+use super::shade::SURFACE_OFFSET;
 use glam::Vec3;
 
 /// Tile edge in pixels.
 pub const TILE: u32 = 16;
 
-/// Primary-ray candidates per tile.
+/// Primary-ray candidates per tile, and for each plane the candidates of the
+/// rays it reflects.
 #[derive(Debug, Clone)]
 pub struct Tiles {
     across: u32,
     lists: Vec<Vec<usize>>,
+    /// Per plane (object index), lists for its mirror rays.
+    mirrors: Vec<(usize, Vec<Vec<usize>>)>,
+    /// Per plane (object index), per tile, a bit per light whose shadow rays from
+    /// the plane's points in the tile only a plane can block.
+    clear: Vec<(usize, Vec<u32>)>,
 }
 
 /// Pixel-space bounds of a box, or `None` when a corner is not in front of the eye
@@ -38,43 +47,192 @@ fn screen_bounds(cam: &CameraRays, min: Vec3, max: Vec3) -> Option<(f32, f32, f3
     Some(b)
 }
 
+/// The box holding `b` mirrored in the plane through `point` with unit `normal`.
+fn mirrored(b: Aabb, point: Vec3, normal: Vec3) -> Aabb {
+    (0..8).fold(Aabb::EMPTY, |m, k| {
+        let c = Vec3::new(
+            if k & 1 == 0 { b.min.x } else { b.max.x },
+            if k & 2 == 0 { b.min.y } else { b.max.y },
+            if k & 4 == 0 { b.min.z } else { b.max.z },
+        );
+        let r = c - 2.0 * (c - point).dot(normal) * normal;
+        m.union(Aabb { min: r, max: r })
+    })
+}
+
 impl Tiles {
-    /// Candidate lists for a `width` x `height` picture.
+    /// Candidate lists for a `width` x `height` picture: for primary rays, and for
+    /// the rays each plane reflects.
+    ///
+    /// A plane is a mirror: the ray it reflects at `P` is the primary ray's
+    /// continuation beyond `P` mirrored in it, so it meets an object exactly where
+    /// the continuation meets the object's mirror image, which the eye sees through
+    /// the same pixel. So the mirror rays of a pixel can only hit the objects whose
+    /// mirrored boxes cover its tile. The reflected ray's start (lifted off the
+    /// surface by 2e-5 m) and rounding move it by far less than the one pixel of
+    /// margin.
     #[must_use]
     pub fn new(p: &Prepared<'_>, cam: &CameraRays, width: u32, height: u32) -> Self {
-        let across = width.div_ceil(TILE);
-        let down = height.div_ceil(TILE);
-        let mut lists = vec![Vec::new(); (across * down) as usize];
-        for (i, bounds) in p.in_query_order() {
-            // Planes (no bounds) and boxes reaching behind the eye go everywhere.
-            let (x0, y0, x1, y1) = match bounds.and_then(|b| screen_bounds(cam, b.min, b.max)) {
-                // One pixel of margin covers round-off in the projection and the
-                // sub-pixel sample offsets.
-                Some((a, b, c, d)) => (a - 1.0, b - 1.0, c + 1.0, d + 1.0),
-                None => (
-                    f32::NEG_INFINITY,
-                    f32::NEG_INFINITY,
-                    f32::INFINITY,
-                    f32::INFINITY,
-                ),
-            };
-            if x1 < 0.0 || y1 < 0.0 || x0 > width as f32 || y0 > height as f32 {
-                continue;
-            }
-            let tx = |x: f32| ((x.max(0.0) / TILE as f32) as u32).min(across - 1);
-            let ty = |y: f32| ((y.max(0.0) / TILE as f32) as u32).min(down - 1);
-            for row in ty(y0)..=ty(y1) {
-                for col in tx(x0)..=tx(x1) {
-                    lists[(row * across + col) as usize].push(i);
+        let objects = p.in_query_order().collect::<Vec<_>>();
+        let mirrors = p
+            .scene
+            .objects
+            .iter()
+            .enumerate()
+            .filter_map(|(i, o)| match o.shape {
+                Shape::Plane { point, normal } => {
+                    let image = objects
+                        .iter()
+                        .map(|&(k, b)| (k, b.map(|b| mirrored(b, point, normal))));
+                    Some((i, lists(image, cam, width, height)))
                 }
-            }
+                _ => None,
+            })
+            .collect();
+        let clear = p
+            .scene
+            .objects
+            .iter()
+            .enumerate()
+            .filter_map(|(i, o)| match o.shape {
+                Shape::Plane { point, normal } => {
+                    Some((i, clear_lights(p, i, cam, (point, normal), width, height)))
+                }
+                _ => None,
+            })
+            .collect();
+        Self {
+            across: width.div_ceil(TILE),
+            lists: lists(objects.into_iter(), cam, width, height),
+            mirrors,
+            clear,
         }
-        Self { across, lists }
+    }
+
+    /// Whether the shadow rays towards light `light` from plane `plane`'s points
+    /// seen through pixel `(x, y)` can only be blocked by a plane.
+    #[must_use]
+    pub fn shadow_clear(&self, plane: usize, light: usize, x: u32, y: u32) -> bool {
+        let tile = self.tile(x, y);
+        light < 32
+            && self
+                .clear
+                .iter()
+                .find(|(i, _)| *i == plane)
+                .is_some_and(|(_, bits)| bits[tile] & (1 << light) != 0)
     }
 
     /// The candidates of pixel `(x, y)`.
     #[must_use]
     pub fn at(&self, x: u32, y: u32) -> &[usize] {
-        &self.lists[((y / TILE) * self.across + x / TILE) as usize]
+        &self.lists[self.tile(x, y)]
     }
+
+    /// The candidates of the rays that plane `plane` reflects at pixel `(x, y)`
+    /// (`None` when `plane` is not a plane).
+    #[must_use]
+    pub fn mirror_at(&self, plane: usize, x: u32, y: u32) -> Option<&[usize]> {
+        let tile = self.tile(x, y);
+        self.mirrors
+            .iter()
+            .find(|(i, _)| *i == plane)
+            .map(|(_, lists)| lists[tile].as_slice())
+    }
+
+    fn tile(&self, x: u32, y: u32) -> usize {
+        ((y / TILE) * self.across + x / TILE) as usize
+    }
+}
+
+/// Per tile, a bit per light (of the first 32) whose shadow rays from the points
+/// of plane `plane` seen in the tile only a plane can block
+/// ([`Footprints::region_clear`](super::shadow::Footprints::region_clear) of the
+/// region the tile's rays, one pixel wider on each side, meet the plane in).
+fn clear_lights(
+    p: &Prepared<'_>,
+    plane: usize,
+    cam: &CameraRays,
+    (point, normal): (Vec3, Vec3),
+    width: u32,
+    height: u32,
+) -> Vec<u32> {
+    let (across, down) = (width.div_ceil(TILE), height.div_ceil(TILE));
+    let lights = p.scene.lights.len().min(32);
+    let mut bits = vec![0; (across * down) as usize];
+    for row in 0..down {
+        for col in 0..across {
+            let (x0, y0) = ((col * TILE) as f32 - 1.0, (row * TILE) as f32 - 1.0);
+            let x1 = (((col + 1) * TILE).min(width)) as f32 + 1.0;
+            let y1 = (((row + 1) * TILE).min(height)) as f32 + 1.0;
+            let mut corners = [Vec3::ZERO; 4];
+            let mut all = true;
+            for (c, (x, y)) in corners
+                .iter_mut()
+                .zip([(x0, y0), (x1, y0), (x0, y1), (x1, y1)])
+            {
+                let ray = cam.ray(x, y);
+                match hit_plane(&ray, point, normal) {
+                    Some(t) => *c = ray.at(t),
+                    None => all = false,
+                }
+            }
+            if !all {
+                continue;
+            }
+            // Starts are lifted by SURFACE_OFFSET; their points lie off the plane by
+            // rounding, a few ulps of their coordinates: twice the offset, plus 1e-5
+            // of the largest coordinate, holds both.
+            let size = corners
+                .iter()
+                .map(|c| c.abs().max_element())
+                .fold(1.0, f32::max);
+            let lift = 2.0 * SURFACE_OFFSET + 1e-5 * size;
+            for light in 0..lights {
+                if p.footprints(plane, light)
+                    .is_some_and(|f| f.region_clear(&corners, lift))
+                {
+                    bits[(row * across + col) as usize] |= 1 << light;
+                }
+            }
+        }
+    }
+    bits
+}
+
+/// Per tile, the objects (index, bounds in query order; `None` for planes) whose
+/// screen bounds cover it.
+fn lists(
+    objects: impl Iterator<Item = (usize, Option<Aabb>)>,
+    cam: &CameraRays,
+    width: u32,
+    height: u32,
+) -> Vec<Vec<usize>> {
+    let across = width.div_ceil(TILE);
+    let down = height.div_ceil(TILE);
+    let mut lists = vec![Vec::new(); (across * down) as usize];
+    for (i, bounds) in objects {
+        // Planes (no bounds) and boxes reaching behind the eye go everywhere.
+        let (x0, y0, x1, y1) = match bounds.and_then(|b| screen_bounds(cam, b.min, b.max)) {
+            // One pixel of margin covers round-off in the projection and the
+            // sub-pixel sample offsets.
+            Some((a, b, c, d)) => (a - 1.0, b - 1.0, c + 1.0, d + 1.0),
+            None => (
+                f32::NEG_INFINITY,
+                f32::NEG_INFINITY,
+                f32::INFINITY,
+                f32::INFINITY,
+            ),
+        };
+        if x1 < 0.0 || y1 < 0.0 || x0 > width as f32 || y0 > height as f32 {
+            continue;
+        }
+        let tx = |x: f32| ((x.max(0.0) / TILE as f32) as u32).min(across - 1);
+        let ty = |y: f32| ((y.max(0.0) / TILE as f32) as u32).min(down - 1);
+        for row in ty(y0)..=ty(y1) {
+            for col in tx(x0)..=tx(x1) {
+                lists[(row * across + col) as usize].push(i);
+            }
+        }
+    }
+    lists
 }
