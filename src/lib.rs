@@ -15,6 +15,8 @@
 //! - [`app`]: the window (winit + pixels), keys, HUD and hot reload.
 //! - [`simulate`]: the `simulate` subcommand's JSON Lines.
 
+#![forbid(unsafe_code)]
+
 pub mod app;
 pub mod bench;
 pub mod cli;

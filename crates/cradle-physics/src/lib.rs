@@ -9,6 +9,8 @@
 //! (`stepped`) with the same impacts exist for comparison. `cradle` puts them
 //! behind one type.
 
+#![forbid(unsafe_code)]
+
 pub mod contact;
 pub mod cradle;
 pub mod elliptic;

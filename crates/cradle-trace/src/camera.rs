@@ -7,13 +7,13 @@ use glam::Vec3;
 /// A camera ready to make rays for a `width` x `height` picture.
 #[derive(Debug, Clone, Copy)]
 pub struct CameraRays {
-    origin: Vec3,
+    pub(crate) origin: Vec3,
     /// Centre of the image plane at distance 1, and its half-extent vectors.
-    forward: Vec3,
-    right: Vec3,
-    up: Vec3,
-    width: f32,
-    height: f32,
+    pub(crate) forward: Vec3,
+    pub(crate) right: Vec3,
+    pub(crate) up: Vec3,
+    pub(crate) width: f32,
+    pub(crate) height: f32,
 }
 
 impl CameraRays {

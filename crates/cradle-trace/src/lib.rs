@@ -19,6 +19,7 @@ pub mod color;
 pub mod geometry;
 pub mod incremental;
 pub mod motion;
+pub mod packet;
 pub mod prepared;
 pub mod render;
 pub mod sampling;

@@ -350,6 +350,12 @@ impl<'a> Prepared<'a> {
         self.footprints.as_ref()?[slot].get(light)?.as_ref()
     }
 
+    /// The planes of the scene (object indices, in query order).
+    #[must_use]
+    pub fn planes(&self) -> &[usize] {
+        &self.planes
+    }
+
     /// [`Self::occluded`] for a shadow ray that only a plane can block (its start
     /// is where no bounded object casts a shadow: [`Footprints::region_clear`]).
     #[must_use]

@@ -7,6 +7,7 @@ use super::camera::CameraRays;
 use super::color::{Image, srgb8};
 use super::geometry::Aabb;
 use super::motion::{Cells, Motion, MotionGrid};
+use super::packet::{Floor, LANES, Packet};
 use super::prepared::Prepared;
 use super::sampling::sample_offsets;
 use super::scene::Scene;
@@ -115,11 +116,46 @@ impl<'a> Frame<'a> {
     }
 
     /// Traces a whole row with `offsets`; returns each pixel's motion cells.
+    /// Centre samples of untracked frames go in packets where the tile allows.
     fn row_with(&self, y: u32, out: &mut [u8], offsets: &[(f32, f32)]) -> Vec<Cells> {
-        (0..self.width)
-            .zip(out.chunks_exact_mut(4))
-            .map(|(x, px)| self.put_with(x, y, px, offsets))
-            .collect()
+        let mut cells = vec![0; self.width as usize];
+        let packets = match &self.tiles {
+            Some(tiles) if self.motion.is_none() && offsets == [(0.5, 0.5)] => Some(Packet {
+                p: &self.prepared,
+                cam: &self.camera,
+                tiles,
+                bound: self.bound,
+            }),
+            _ => None,
+        };
+        let mut x = 0;
+        while x < self.width {
+            let lanes = LANES as u32;
+            if let Some(pk) = &packets
+                && x + lanes <= self.width
+            {
+                let span = &mut out[x as usize * 4..(x + lanes) as usize * 4];
+                if pk
+                    .tiles
+                    .only_plane(pk.p, x, y, lanes)
+                    .and_then(|plane| Floor::of(pk.p, pk.cam, plane))
+                    .is_some_and(|f| pk.floor(&f, x, y, span))
+                {
+                    x += lanes;
+                    continue;
+                }
+                for i in x..x + lanes {
+                    let px = &mut out[i as usize * 4..i as usize * 4 + 4];
+                    cells[i as usize] = self.put_with(i, y, px, offsets);
+                }
+                x += lanes;
+                continue;
+            }
+            let px = &mut out[x as usize * 4..x as usize * 4 + 4];
+            cells[x as usize] = self.put_with(x, y, px, offsets);
+            x += 1;
+        }
+        cells
     }
 
     /// Whether pixel `(x, y)` of a one-sample picture differs from a 4-neighbour

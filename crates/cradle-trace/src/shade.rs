@@ -19,7 +19,7 @@ use glam::Vec3;
 pub(crate) const SURFACE_OFFSET: f32 = 2e-5;
 
 /// Half an 8-bit step, divided by the steepest slope of the sRGB encoding.
-const BAILOUT: f32 = 0.5 / 255.0 / 12.92;
+pub(crate) const BAILOUT: f32 = 0.5 / 255.0 / 12.92;
 
 /// The scene's brightest possible radiance per channel: every light at full
 /// diffuse and full specular, or the background.
@@ -37,11 +37,25 @@ pub fn radiance_bound(p: &Prepared<'_>) -> f32 {
     lights.max(p.scene.background).max_element()
 }
 
+/// `v.floor() as i64`, exactly (saturating, NaN to 0), without a call to libm's
+/// `floorf` (the portable x86-64 build has no rounding instruction): truncate,
+/// then step down where truncation went up.
+#[inline]
+#[must_use]
+pub fn floor_i64(v: f32) -> i64 {
+    let t = v as i64;
+    if (t as f32) > v {
+        t.saturating_sub(1)
+    } else {
+        t
+    }
+}
+
 /// The surface colour at `point`: plain, or a checker on the x-z grid.
-fn base_color(m: &Material, point: Vec3) -> Vec3 {
+pub(crate) fn base_color(m: &Material, point: Vec3) -> Vec3 {
     match m.checker {
         Some((other, size)) => {
-            let cell = (point.x / size).floor() as i64 + (point.z / size).floor() as i64;
+            let cell = floor_i64(point.x / size) + floor_i64(point.z / size);
             if cell.rem_euclid(2) == 0 {
                 m.color
             } else {
@@ -132,14 +146,7 @@ fn shade(
             origin: start,
             dir: to_light,
         };
-        motion.segment(&shadow, dist);
-        let clear = tile.is_some_and(|(t, x, y)| t.shadow_clear(hit.object, li, x, y));
-        let blocked = if clear {
-            p.occluded_by_planes(&shadow, dist)
-        } else {
-            p.occluded_towards(hit.object, li, &shadow, dist)
-        };
-        if blocked {
+        if blocked(p, &shadow, dist, (hit.object, li), tile, motion) {
             continue;
         }
         color += base * light_color * lambert;
@@ -155,15 +162,61 @@ fn shade(
     if r > 0.0 && depth < p.scene.max_depth && weight * r * bound >= BAILOUT {
         let dir = ray.dir - 2.0 * ray.dir.dot(n) * n;
         let mirror = Ray { origin: start, dir };
-        let candidates = tile.and_then(|(t, x, y)| t.mirror_at(hit.object, x, y));
-        let reflected = match candidates {
-            Some(c) => {
-                let h = p.closest_among(&mirror, f32::INFINITY, c);
-                shade(p, &mirror, h, depth + 1, weight * r, bound, motion, None)
-            }
-            None => trace(p, &mirror, depth + 1, weight * r, bound, motion),
-        };
+        let reflected = reflect(
+            p,
+            &mirror,
+            hit.object,
+            depth + 1,
+            weight * r,
+            bound,
+            motion,
+            tile,
+        );
         color = color * (1.0 - r) + reflected * r;
     }
     color
+}
+
+/// Whether the shadow ray from a point of `object` towards light `li` is blocked
+/// before `dist`: a tile no caster can shadow (`tile`) tests only the planes.
+pub(crate) fn blocked(
+    p: &Prepared<'_>,
+    shadow: &Ray,
+    dist: f32,
+    (object, li): (usize, usize),
+    tile: Option<(&Tiles, u32, u32)>,
+    motion: &mut Motion,
+) -> bool {
+    motion.segment(shadow, dist);
+    if tile.is_some_and(|(t, x, y)| t.shadow_clear(object, li, x, y)) {
+        p.occluded_by_planes(shadow, dist)
+    } else {
+        p.occluded_towards(object, li, shadow, dist)
+    }
+}
+
+/// The radiance the mirror ray `mirror` from `object` brings back, traced as a
+/// bounce at `depth` with path weight `weight`: a plane's mirror ray from a
+/// primary pixel (`tile`) tests only its tile's mirror candidates.
+#[expect(
+    clippy::too_many_arguments,
+    reason = "the recursion's state, passed down"
+)]
+pub(crate) fn reflect(
+    p: &Prepared<'_>,
+    mirror: &Ray,
+    object: usize,
+    depth: u32,
+    weight: f32,
+    bound: f32,
+    motion: &mut Motion,
+    tile: Option<(&Tiles, u32, u32)>,
+) -> Vec3 {
+    match tile.and_then(|(t, x, y)| t.mirror_at(object, x, y)) {
+        Some(c) => {
+            let h = p.closest_among(mirror, f32::INFINITY, c);
+            shade(p, mirror, h, depth, weight, bound, motion, None)
+        }
+        None => trace(p, mirror, depth, weight, bound, motion),
+    }
 }

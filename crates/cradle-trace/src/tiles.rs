@@ -19,6 +19,8 @@ pub const TILE: u32 = 16;
 pub struct Tiles {
     across: u32,
     lists: Vec<Vec<usize>>,
+    /// Per object, its pixel rectangle with margin, for finer lists per packet.
+    rects: Vec<[f32; 4]>,
     /// Per plane (object index), lists for its mirror rays.
     mirrors: Vec<(usize, Vec<Vec<usize>>)>,
     /// Per plane (object index), per tile, a bit per light whose shadow rays from
@@ -101,12 +103,34 @@ impl Tiles {
                 _ => None,
             })
             .collect();
+        let (lists, rects) = lists_and_rects(objects.into_iter(), cam, width, height);
         Self {
             across: width.div_ceil(TILE),
-            lists: lists(objects.into_iter(), cam, width, height),
+            lists,
+            rects,
             mirrors,
             clear,
         }
+    }
+
+    /// The one plane that the primary rays of pixels `x..x + n` of row `y` (all in
+    /// one tile) can hit, when nothing else can: no other candidate of the tile has
+    /// a rectangle reaching those pixels.
+    #[must_use]
+    pub fn only_plane(&self, p: &Prepared<'_>, x: u32, y: u32, n: u32) -> Option<usize> {
+        let (xa, xb, ya, yb) = (x as f32, (x + n) as f32, y as f32, (y + 1) as f32);
+        let mut plane = None;
+        for &i in self.at(x, y) {
+            let [x0, y0, x1, y1] = self.rects[i];
+            if x1 < xa || x0 > xb || y1 < ya || y0 > yb {
+                continue;
+            }
+            if plane.is_some() || !matches!(p.scene.objects[i].shape, Shape::Plane { .. }) {
+                return None;
+            }
+            plane = Some(i);
+        }
+        plane
     }
 
     /// Whether the shadow rays towards light `light` from plane `plane`'s points
@@ -207,9 +231,21 @@ fn lists(
     width: u32,
     height: u32,
 ) -> Vec<Vec<usize>> {
+    lists_and_rects(objects, cam, width, height).0
+}
+
+/// [`lists`], and each object's pixel rectangle `[x0, y0, x1, y1]` with its margin
+/// (infinite for planes and boxes reaching behind the eye), by object index.
+fn lists_and_rects(
+    objects: impl Iterator<Item = (usize, Option<Aabb>)>,
+    cam: &CameraRays,
+    width: u32,
+    height: u32,
+) -> (Vec<Vec<usize>>, Vec<[f32; 4]>) {
     let across = width.div_ceil(TILE);
     let down = height.div_ceil(TILE);
     let mut lists = vec![Vec::new(); (across * down) as usize];
+    let mut rects = Vec::new();
     for (i, bounds) in objects {
         // Planes (no bounds) and boxes reaching behind the eye go everywhere.
         let (x0, y0, x1, y1) = match bounds.and_then(|b| screen_bounds(cam, b.min, b.max)) {
@@ -223,6 +259,10 @@ fn lists(
                 f32::INFINITY,
             ),
         };
+        if rects.len() <= i {
+            rects.resize(i + 1, [0.0; 4]);
+        }
+        rects[i] = [x0, y0, x1, y1];
         if x1 < 0.0 || y1 < 0.0 || x0 > width as f32 || y0 > height as f32 {
             continue;
         }
@@ -234,5 +274,5 @@ fn lists(
             }
         }
     }
-    lists
+    (lists, rects)
 }

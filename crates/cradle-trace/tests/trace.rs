@@ -278,3 +278,38 @@ fn a_symmetric_scene_gives_a_mirror_symmetric_picture() {
     }
     assert!(differ < w * h / 100, "{differ} channels off by one");
 }
+
+#[test]
+fn floor_i64_is_floor_as_i64_for_every_kind_of_value() {
+    use cradle_trace::shade::floor_i64;
+    let mut values = vec![
+        0.0,
+        -0.0,
+        0.5,
+        -0.5,
+        1.0,
+        -1.0,
+        -1.000_000_1,
+        8_388_607.5,
+        -8_388_607.5,
+        8_388_608.0,
+        -8_388_609.0,
+        1e18,
+        -1e18,
+        9.3e18,
+        -9.3e18,
+        9.223_372e18,
+        f32::MAX,
+        f32::MIN,
+        f32::MIN_POSITIVE,
+        -f32::MIN_POSITIVE,
+        f32::INFINITY,
+        f32::NEG_INFINITY,
+        f32::NAN,
+    ];
+    // A sweep over the checker's range: floor positions / square sizes.
+    values.extend((-20_000..20_000).map(|i| i as f32 * 0.013_7));
+    for v in values {
+        assert_eq!(floor_i64(v), v.floor() as i64, "{v}");
+    }
+}
