@@ -76,6 +76,79 @@ fn casters(from: Aabb, light: &Light, bounded: &[(usize, Aabb)]) -> Vec<usize> {
         .collect()
 }
 
+/// The casters of one object's shadow rays, per light, per piece of its length:
+/// a cylinder is cut along its axis into pieces about four radii long (at most
+/// 16), so that a shadow ray from a point of a long rod tests only what can lie
+/// between that part of the rod and the light. A sphere is one piece.
+#[derive(Debug, Clone)]
+pub(crate) struct Casters {
+    /// Start of the axis, unit axis and length (m); pieces along it.
+    a: Vec3,
+    u: Vec3,
+    len: f32,
+    pieces: usize,
+    /// Per light, per piece: the objects (in query order) that can block.
+    lists: Vec<Vec<Vec<usize>>>,
+}
+
+impl Casters {
+    /// The casters of `shape` for each of `lights`; `None` for planes.
+    fn new(shape: &Shape, lights: &[Light], bounded: &[(usize, Aabb)]) -> Option<Self> {
+        let (a, b, radius) = match *shape {
+            Shape::Plane { .. } => return None,
+            Shape::Sphere { centre, radius } => (centre, centre, radius),
+            Shape::Cylinder { a, b, radius } => (a, b, radius),
+        };
+        let len = (b - a).length();
+        let pieces = if len > 0.0 {
+            ((len / (4.0 * radius)).ceil() as usize).clamp(1, 16)
+        } else {
+            1
+        };
+        let u = if len > 0.0 { (b - a) / len } else { Vec3::ZERO };
+        // Each piece's box holds its part of the shape, and overlaps its neighbours'
+        // by a margin far beyond the rounding of the piece lookup (and beyond the
+        // 2e-5 m that shadow rays start off the caps).
+        let margin = 1e-4 + 1e-4 * len;
+        let piece_box = |k: usize| -> Aabb {
+            if pieces == 1 {
+                return bounds(shape).expect("spheres and cylinders are bounded");
+            }
+            let step = len / pieces as f32;
+            let (s0, s1) = (k as f32 * step - margin, (k + 1) as f32 * step + margin);
+            bounds(&Shape::Cylinder {
+                a: a + u * s0,
+                b: a + u * s1,
+                radius: radius + margin,
+            })
+            .expect("cylinders are bounded")
+        };
+        let boxes: Vec<Aabb> = (0..pieces).map(piece_box).collect();
+        Some(Self {
+            a,
+            u,
+            len,
+            pieces,
+            lists: lights
+                .iter()
+                .map(|l| boxes.iter().map(|&b| casters(b, l, bounded)).collect())
+                .collect(),
+        })
+    }
+
+    /// The casters towards light `light` of a shadow ray starting at `at`.
+    fn at(&self, light: usize, at: Vec3) -> Option<&[usize]> {
+        let piece = if self.pieces == 1 {
+            0
+        } else {
+            let s = (at - self.a).dot(self.u) / self.len * self.pieces as f32;
+            // Clamped to the ends (the caps' starts lie just beyond them); NaN to 0.
+            (s.max(0.0) as usize).min(self.pieces - 1)
+        };
+        Some(self.lists.get(light)?[piece].as_slice())
+    }
+}
+
 /// A shape with what its hit test needs worked out once per frame.
 #[derive(Debug, Clone, Copy)]
 enum Geom {
@@ -107,9 +180,9 @@ pub struct Prepared<'a> {
     /// Per plane, per light: which objects can shadow which part of it; built
     /// only when shadow culling is turned on.
     footprints: Option<Vec<Vec<Option<Footprints>>>>,
-    /// Per bounded object, per light: the objects that can block its shadow rays
-    /// ([`casters`]); built only when shadow culling is turned on.
-    casters: Option<Vec<Vec<Vec<usize>>>>,
+    /// Per object (`None` for planes): the objects that can block its shadow
+    /// rays ([`Casters`]); built only when shadow culling is turned on.
+    casters: Option<Vec<Option<Casters>>>,
     /// Over `bounded`; built only when the hierarchy is turned on.
     bvh: Option<Bvh>,
     bounded: Vec<(usize, Aabb)>,
@@ -309,17 +382,10 @@ impl<'a> Prepared<'a> {
                 .collect()
         });
         self.casters = on.then(|| {
-            (0..scene.objects.len())
-                .map(|i| {
-                    let Some(b) = bounds(&scene.objects[i].shape) else {
-                        return Vec::new();
-                    };
-                    scene
-                        .lights
-                        .iter()
-                        .map(|l| casters(b, l, &self.bounded))
-                        .collect()
-                })
+            scene
+                .objects
+                .iter()
+                .map(|o| Casters::new(&o.shape, &scene.lights, &self.bounded))
                 .collect()
         });
         self
@@ -330,7 +396,11 @@ impl<'a> Prepared<'a> {
     /// shadow can fall there are tested. The same answer either way.
     #[must_use]
     pub fn occluded_towards(&self, from: usize, light: usize, ray: &Ray, t_max: f32) -> bool {
-        if let Some(list) = self.casters.as_ref().and_then(|c| c.get(from)?.get(light)) {
+        if let Some(list) = self
+            .casters
+            .as_ref()
+            .and_then(|c| c.get(from)?.as_ref()?.at(light, ray.origin))
+        {
             if self.occluded_by_planes(ray, t_max) {
                 return true;
             }
