@@ -1,8 +1,8 @@
 //! A bounding volume hierarchy over the bounded objects: secondary rays (shadows,
 //! reflections) visit only the boxes they pass through, near side first, instead
-//! of every object's box. Built each frame (the balls move), by median splits of
-//! the box centres along the widest axis: O(n log n), tens of microseconds for
-//! the default cradle.
+//! of every object's box. Built each frame (the balls move), by the surface area
+//! heuristic over sorted box centres: O(n log^2 n), tens of microseconds for the
+//! default cradle.
 
 use super::geometry::{Aabb, Ray};
 use glam::Vec3;
@@ -20,6 +20,46 @@ struct Node {
     right: u32,
     /// Axis of the split (inner nodes): the near child is visited first.
     axis: u8,
+}
+
+/// Surface area of a box: what the chance that a ray meets it scales with.
+fn area(b: &Aabb) -> f32 {
+    let e = (b.max - b.min).max(Vec3::ZERO);
+    2.0 * (e.x * e.y + e.y * e.z + e.z * e.x)
+}
+
+/// The split of `items` by the surface area heuristic: along each axis, sorted by
+/// box centre (ties by item, so the tree is the same on every run), the cut that
+/// minimises `area(left) * left + area(right) * right`. Leaves `items` sorted along
+/// the chosen axis; returns it and the size of the left part (at least 1).
+///
+/// Large boxes (the frame's rails, spanning the whole cradle) end up apart from
+/// the small ones (balls, strings), instead of in every node as a median split of
+/// centres puts them.
+fn sah_split(boxes: &[Aabb], items: &mut [usize]) -> (usize, usize) {
+    let centre = |k: usize| (boxes[k].min + boxes[k].max) * 0.5;
+    let n = items.len();
+    let mut best = (f32::INFINITY, 0, n / 2);
+    let mut right = vec![0.0; n];
+    for axis in 0..3 {
+        items.sort_by(|&a, &b| centre(a)[axis].total_cmp(&centre(b)[axis]).then(a.cmp(&b)));
+        let mut acc = Aabb::EMPTY;
+        for i in (1..n).rev() {
+            acc = acc.union(boxes[items[i]]);
+            right[i] = area(&acc) * (n - i) as f32;
+        }
+        let mut acc = Aabb::EMPTY;
+        for i in 1..n {
+            acc = acc.union(boxes[items[i - 1]]);
+            let cost = area(&acc) * i as f32 + right[i];
+            if cost < best.0 {
+                best = (cost, axis, i);
+            }
+        }
+    }
+    let axis = best.1;
+    items.sort_by(|&a, &b| centre(a)[axis].total_cmp(&centre(b)[axis]).then(a.cmp(&b)));
+    (axis, best.2)
 }
 
 /// The hierarchy; items are positions in the list it was built from.
@@ -57,22 +97,7 @@ impl Bvh {
         if count <= LEAF {
             return at;
         }
-        let centre = |k: usize| (boxes[k].min + boxes[k].max) * 0.5;
-        let (lo, hi) = items.iter().fold(
-            (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
-            |(lo, hi), &k| (lo.min(centre(k)), hi.max(centre(k))),
-        );
-        let extent = hi - lo;
-        let axis = if extent.x >= extent.y && extent.x >= extent.z {
-            0
-        } else if extent.y >= extent.z {
-            1
-        } else {
-            2
-        };
-        // Sorted by centre, ties by item, so the tree is the same on every run.
-        items.sort_by(|&a, &b| centre(a)[axis].total_cmp(&centre(b)[axis]).then(a.cmp(&b)));
-        let half = count / 2;
+        let (axis, half) = sah_split(boxes, items);
         self.nodes[at].count = 0;
         self.nodes[at].axis = axis as u8;
         self.build(boxes, first, half);
