@@ -106,6 +106,28 @@ impl Bvh {
         at
     }
 
+    /// Pushes onto `out` every item whose box `meets`, visiting only the nodes whose
+    /// boxes `meets` too: `meets` must hold for a box whenever it holds for a box
+    /// inside it (a test against a widened segment does).
+    pub fn collect(&self, meets: impl Fn(&Aabb) -> bool, boxes: &[Aabb], out: &mut Vec<usize>) {
+        let mut stack = vec![0u32];
+        while let Some(at) = stack.pop() {
+            let Some(node) = self.nodes.get(at as usize) else {
+                continue;
+            };
+            if !meets(&node.bounds) {
+                continue;
+            }
+            if node.count > 0 {
+                let items = &self.order[node.first as usize..(node.first + node.count) as usize];
+                out.extend(items.iter().copied().filter(|&k| meets(&boxes[k])));
+            } else {
+                stack.push(at + 1);
+                stack.push(node.right);
+            }
+        }
+    }
+
     /// Calls `visit(item)` for the items of every leaf whose box the ray meets
     /// before `limit()` (asked again at each node, so a closer hit prunes the rest),
     /// near side first. Stops and returns true as soon as `visit` does.

@@ -50,7 +50,10 @@ pub(crate) fn bounds(shape: &Shape) -> Option<Aabb> {
 /// of the segment from the box's centre to the light. An object can only block it
 /// if its box, widened by that much, meets that segment. Ambient light casts no
 /// shadow rays: no list.
-fn casters(from: Aabb, light: &Light, bounded: &[(usize, Aabb)]) -> Vec<usize> {
+///
+/// With a hierarchy over `bounded` (`bvh`, items its positions), only the objects
+/// in the nodes near the segment are tested: many objects then cost O(log n) each.
+fn casters(from: Aabb, light: &Light, bounded: &[(usize, Aabb)], bvh: Option<&Bvh>) -> Vec<usize> {
     let centre = (from.min + from.max) * 0.5;
     let (dir, t_max) = match *light {
         Light::Ambient { .. } => return Vec::new(),
@@ -62,18 +65,29 @@ fn casters(from: Aabb, light: &Light, bounded: &[(usize, Aabb)]) -> Vec<usize> {
     let scale = centre.abs().max_element() + reach;
     let widen = 0.5 * (from.max - from.min).length() + 1e-4 + 1e-4 * scale;
     let inv = dir.recip();
-    bounded
-        .iter()
-        .filter(|(_, b)| {
-            let t1 = (b.min - widen - centre) * inv;
-            let t2 = (b.max + widen - centre) * inv;
-            let near = t1.min(t2).max_element().max(0.0);
-            let far = t1.max(t2).min_element().min(t_max);
-            // NaN (an axis the segment runs along, at a slab's edge): keep it.
-            near <= far || near.is_nan() || far.is_nan()
-        })
-        .map(|&(i, _)| i)
-        .collect()
+    let meets = |b: &Aabb| {
+        let t1 = (b.min - widen - centre) * inv;
+        let t2 = (b.max + widen - centre) * inv;
+        let near = t1.min(t2).max_element().max(0.0);
+        let far = t1.max(t2).min_element().min(t_max);
+        // NaN (an axis the segment runs along, at a slab's edge): keep it.
+        near <= far || near.is_nan() || far.is_nan()
+    };
+    match bvh {
+        Some(bvh) => {
+            let boxes: Vec<Aabb> = bounded.iter().map(|&(_, b)| b).collect();
+            let mut ks = Vec::new();
+            bvh.collect(meets, &boxes, &mut ks);
+            // Back to query order.
+            ks.sort_unstable();
+            ks.into_iter().map(|k| bounded[k].0).collect()
+        }
+        None => bounded
+            .iter()
+            .filter(|(_, b)| meets(b))
+            .map(|&(i, _)| i)
+            .collect(),
+    }
 }
 
 /// The casters of one object's shadow rays, per light, per piece of its length:
@@ -93,7 +107,12 @@ pub(crate) struct Casters {
 
 impl Casters {
     /// The casters of `shape` for each of `lights`; `None` for planes.
-    fn new(shape: &Shape, lights: &[Light], bounded: &[(usize, Aabb)]) -> Option<Self> {
+    fn new(
+        shape: &Shape,
+        lights: &[Light],
+        bounded: &[(usize, Aabb)],
+        bvh: Option<&Bvh>,
+    ) -> Option<Self> {
         let (a, b, radius) = match *shape {
             Shape::Plane { .. } => return None,
             Shape::Sphere { centre, radius } => (centre, centre, radius),
@@ -131,7 +150,7 @@ impl Casters {
             pieces,
             lists: lights
                 .iter()
-                .map(|l| boxes.iter().map(|&b| casters(b, l, bounded)).collect())
+                .map(|l| boxes.iter().map(|&b| casters(b, l, bounded, bvh)).collect())
                 .collect(),
         })
     }
@@ -382,10 +401,14 @@ impl<'a> Prepared<'a> {
                 .collect()
         });
         self.casters = on.then(|| {
+            // Beyond a few dozen objects, find each piece's casters through a
+            // hierarchy rather than by testing every object.
+            let boxes: Vec<Aabb> = self.bounded.iter().map(|&(_, b)| b).collect();
+            let bvh = (boxes.len() > 32).then(|| Bvh::new(&boxes));
             scene
                 .objects
                 .iter()
-                .map(|o| Casters::new(&o.shape, &scene.lights, &self.bounded))
+                .map(|o| Casters::new(&o.shape, &scene.lights, &self.bounded, bvh.as_ref()))
                 .collect()
         });
         self
