@@ -57,9 +57,21 @@ struct V8 {
     z: F8,
 }
 
+/// The lanes `f(0)..f(7)`. A plain loop, which inlines and vectorizes;
+/// `std::array::from_fn` calls its closure through a wrapper that stays a call.
 #[inline(always)]
 fn f8(f: impl FnMut(usize) -> f32) -> F8 {
-    std::array::from_fn(f)
+    lanes(f)
+}
+
+/// [`f8`] for any lane type.
+#[inline(always)]
+fn lanes<T: Copy + Default>(mut f: impl FnMut(usize) -> T) -> [T; LANES] {
+    let mut out = [T::default(); LANES];
+    for (i, o) in out.iter_mut().enumerate() {
+        *o = f(i);
+    }
+    out
 }
 
 impl V8 {
@@ -213,7 +225,7 @@ impl Packet<'_, '_> {
         let m = floor.material;
         let tile = Some((self.tiles, x0, y));
         // base_color: a checker on the x-z grid, or plain.
-        let base: [Vec3; LANES] = std::array::from_fn(|i| match m.checker {
+        let base: [Vec3; LANES] = lanes(|i| match m.checker {
             Some((other, size)) => {
                 let cell = floor_i64(point.x[i] / size) + floor_i64(point.z[i] / size);
                 if cell.rem_euclid(2) == 0 {
@@ -339,7 +351,7 @@ impl Packet<'_, '_> {
             return blocked;
         }
         let mut motion = Motion::new(None);
-        std::array::from_fn(|i| {
+        lanes(|i| {
             lambert[i] > 0.0 && {
                 let shadow = Ray {
                     origin: start.lane(i),
@@ -427,7 +439,7 @@ impl Packet<'_, '_> {
         }
         let bg = self.p.scene.background;
         let mut motion = Motion::new(None);
-        let lanes: [Vec3; LANES] = std::array::from_fn(|i| {
+        let lanes: [Vec3; LANES] = lanes(|i| {
             if missed[i] {
                 return bg;
             }
