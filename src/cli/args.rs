@@ -3,6 +3,24 @@
 //! does that once, turning these into a [`super::Job`].
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
+
+/// A whole-number flag: its value, or a message with what `allowed`.
+fn whole(allowed: &'static str) -> impl Fn(&str) -> Result<i64, String> + Clone + Send + Sync {
+    move |s: &str| {
+        s.trim()
+            .parse()
+            .map_err(|_| format!("not a whole number; allowed: {allowed}"))
+    }
+}
+
+/// A number flag: a finite number, or a message with what `allowed`. Range checks
+/// come later, with the config's.
+fn number(allowed: &'static str) -> impl Fn(&str) -> Result<f64, String> + Clone + Send + Sync {
+    move |s: &str| match s.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() => Ok(v),
+        _ => Err(format!("not a finite number; allowed: {allowed}")),
+    }
+}
 use std::path::PathBuf;
 
 /// A Newton's cradle: ray traced on the CPU, driven by exact physics.
@@ -38,7 +56,7 @@ pub struct RenderArgs {
     #[arg(long, value_name = "PATH")]
     pub out: Option<PathBuf>,
     /// Simulated time of the (first) frame (s), 0..=1e6.
-    #[arg(
+    #[arg(value_parser = number("0..=1e6 (s)"), 
         long,
         default_value_t = 0.0,
         allow_negative_numbers = true,
@@ -46,10 +64,10 @@ pub struct RenderArgs {
     )]
     pub time: f64,
     /// Number of frames of a sequence or GIF, 1..=100000 (GIF default 60).
-    #[arg(long, allow_negative_numbers = true, value_name = "N")]
+    #[arg(value_parser = whole("1..=100000"), long, allow_negative_numbers = true, value_name = "N")]
     pub frames: Option<i64>,
     /// Frames per second of simulated time, > 0 and <= 1000.
-    #[arg(
+    #[arg(value_parser = number("> 0 and <= 1000"), 
         long,
         default_value_t = 30.0,
         allow_negative_numbers = true,
@@ -84,7 +102,7 @@ pub struct BenchQualityArgs {
     #[arg(long, value_name = "FILE.svg")]
     pub plot: Option<PathBuf>,
     /// Frames timed per row (the median is reported), 1..=1000.
-    #[arg(
+    #[arg(value_parser = whole("1..=1000"), 
         long,
         default_value_t = 3,
         allow_negative_numbers = true,
@@ -100,7 +118,7 @@ pub struct BenchStressArgs {
     #[arg(long)]
     pub json: bool,
     /// Run every scenario this many times longer than the test suite does, 0.01..=1000.
-    #[arg(
+    #[arg(value_parser = number("0.01..=1000"), 
         long,
         default_value_t = 10.0,
         allow_negative_numbers = true,
@@ -119,7 +137,7 @@ pub struct BenchPhysicsArgs {
     #[arg(long, value_name = "FILE.svg")]
     pub plot: Option<PathBuf>,
     /// Simulated seconds per run, 0.1..=3600.
-    #[arg(
+    #[arg(value_parser = number("0.1..=3600 (s)"), 
         long,
         default_value_t = 60.0,
         allow_negative_numbers = true,
@@ -127,7 +145,7 @@ pub struct BenchPhysicsArgs {
     )]
     pub duration: f64,
     /// Smallest step of the sweep (s), 1e-7..=1e-2 (the sweep runs from 1e-2 down).
-    #[arg(
+    #[arg(value_parser = number("1e-7..=1e-2 (s)"), 
         long,
         default_value_t = 1e-5,
         allow_negative_numbers = true,
@@ -143,7 +161,7 @@ pub struct BenchRenderArgs {
     #[arg(long)]
     pub json: bool,
     /// Frames timed per thread count (the median is reported), 1..=10000.
-    #[arg(
+    #[arg(value_parser = whole("1..=10000"), 
         long,
         default_value_t = 15,
         allow_negative_numbers = true,
@@ -171,10 +189,10 @@ pub enum BenchMode {
 #[derive(Debug, Args)]
 pub struct SimulateArgs {
     /// Simulated time (s), 0..=1e7.
-    #[arg(long, default_value_t = 10.0, allow_negative_numbers = true)]
+    #[arg(value_parser = number("0..=1e7 (s)"), long, default_value_t = 10.0, allow_negative_numbers = true)]
     pub duration: f64,
     /// Sampling interval (s), > 0, at most 1e8 samples in all.
-    #[arg(long, default_value_t = 0.01, allow_negative_numbers = true)]
+    #[arg(value_parser = number("> 0 (s)"), long, default_value_t = 0.01, allow_negative_numbers = true)]
     pub every: f64,
 }
 
@@ -209,16 +227,16 @@ pub struct Common {
     #[arg(long, global = true, value_name = "PATH")]
     pub config: Option<PathBuf>,
     /// Number of balls, 1..=200.
-    #[arg(long, global = true, allow_negative_numbers = true, value_name = "N")]
+    #[arg(value_parser = whole("1..=200"), long, global = true, allow_negative_numbers = true, value_name = "N")]
     pub balls: Option<i64>,
     /// Balls lifted from the left, 0..=balls.
-    #[arg(long, global = true, allow_negative_numbers = true, value_name = "K")]
+    #[arg(value_parser = whole("0..=balls"), long, global = true, allow_negative_numbers = true, value_name = "K")]
     pub lift: Option<i64>,
     /// Lift angle (degrees), 0 <= DEG < 180.
-    #[arg(long, global = true, allow_negative_numbers = true, value_name = "DEG")]
+    #[arg(value_parser = number("0 <= DEG < 180"), long, global = true, allow_negative_numbers = true, value_name = "DEG")]
     pub angle: Option<f64>,
     /// Gap between neighbouring balls at rest (m), >= 0.
-    #[arg(long, global = true, allow_negative_numbers = true, value_name = "M")]
+    #[arg(value_parser = number(">= 0 (m)"), long, global = true, allow_negative_numbers = true, value_name = "M")]
     pub gap: Option<f64>,
     /// Contact model.
     #[arg(long, global = true, value_enum)]
@@ -227,15 +245,15 @@ pub struct Common {
     #[arg(long, global = true, value_enum)]
     pub integrator: Option<IntegratorFlag>,
     /// Step of the fixed-step integrators (s), 1e-7..=0.1.
-    #[arg(long, global = true, allow_negative_numbers = true, value_name = "S")]
+    #[arg(value_parser = number("1e-7..=0.1 (s)"), long, global = true, allow_negative_numbers = true, value_name = "S")]
     pub dt: Option<f64>,
     /// Tracing threads, 0..=256 (0 = every core).
-    #[arg(long, global = true, allow_negative_numbers = true, value_name = "N")]
+    #[arg(value_parser = whole("0..=256 (0 = every core)"), long, global = true, allow_negative_numbers = true, value_name = "N")]
     pub threads: Option<i64>,
     /// Picture width (pixels), 16..=8192.
-    #[arg(long, global = true, allow_negative_numbers = true, value_name = "W")]
+    #[arg(value_parser = whole("16..=8192"), long, global = true, allow_negative_numbers = true, value_name = "W")]
     pub width: Option<i64>,
     /// Picture height (pixels), 16..=8192.
-    #[arg(long, global = true, allow_negative_numbers = true, value_name = "H")]
+    #[arg(value_parser = whole("16..=8192"), long, global = true, allow_negative_numbers = true, value_name = "H")]
     pub height: Option<i64>,
 }

@@ -203,7 +203,7 @@ fn check_simulate(a: &SimulateArgs) -> Result<(), InputError> {
     flag_value("--every", a.every, ok, "> 0 (s)")?;
     if a.duration / a.every > 1e8 {
         return Err(InputError::Flag(format!(
-            "--every {}: too small for --duration {}; allowed: at most 1e8 samples (every >= duration / 1e8)",
+            "--every {:?}: too small for --duration {:?}; allowed: at most 1e8 samples (every >= duration / 1e8)",
             a.every, a.duration
         )));
     }

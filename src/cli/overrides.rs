@@ -37,15 +37,15 @@ impl Common {
         add(
             "start.angle_deg",
             "--angle",
-            self.angle.map(|v| v.to_string()),
+            self.angle.map(|v| format!("{v:?}")),
         );
-        add("cradle.gap", "--gap", self.gap.map(|v| v.to_string()));
+        add("cradle.gap", "--gap", self.gap.map(|v| format!("{v:?}")));
         add(
             "contact.model",
             "--contact",
             self.contact.map(|v| format!("{v:?}").to_lowercase()),
         );
-        add("physics.dt", "--dt", self.dt.map(|v| v.to_string()));
+        add("physics.dt", "--dt", self.dt.map(|v| format!("{v:?}")));
         add(
             "render.threads",
             "--threads",
@@ -153,7 +153,7 @@ impl From<IntegratorFlag> for Integrator {
 }
 
 /// `v` when `ok`; else the flag's error, naming what is allowed.
-pub(super) fn flag_value<T: std::fmt::Display>(
+pub(super) fn flag_value<T: std::fmt::Debug>(
     flag: &str,
     v: T,
     ok: bool,
@@ -163,7 +163,8 @@ pub(super) fn flag_value<T: std::fmt::Display>(
         Ok(v)
     } else {
         Err(InputError::Flag(format!(
-            "{flag} {v}: not allowed; allowed: {allowed}"
+            // Debug, not Display: 1e300 stays 1e300, not 301 digits.
+            "{flag} {v:?}: not allowed; allowed: {allowed}"
         )))
     }
 }

@@ -1,9 +1,10 @@
 //! Reading the asset: which file, parsing RON, and errors that say where.
 
 use super::Config;
-use super::locate::locate;
-use super::validate::FieldError;
+use super::locate::{locate, locate_exact};
+use super::validate::{FieldError, WHOLE};
 use std::fmt;
+use std::io::Read;
 use std::path::{Path, PathBuf};
 
 /// The default asset, built into the binary so that it runs from anywhere.
@@ -64,6 +65,9 @@ pub enum ConfigError {
         #[source]
         source: std::io::Error,
     },
+    /// Not a regular file (a folder, FIFO or device), or too large to be a config.
+    #[error("{file}: {reason}; allowed: a RON file of at most 1 MiB")]
+    NotAFile { file: String, reason: String },
     /// The file is not UTF-8 text.
     #[error("{file}: the config is not UTF-8 text (is it a binary file?)")]
     NotText { file: String },
@@ -103,26 +107,70 @@ fn invalid_message(file: &str, errors: &[(Option<(usize, usize)>, FieldError)]) 
 /// See [`ConfigSource::load`].
 pub fn load_file(path: &Path) -> Result<Config, ConfigError> {
     let file = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|source| ConfigError::Read {
+    let read = |source| ConfigError::Read {
         file: file.clone(),
         source,
-    })?;
+    };
+    let not_a_file = |reason: String| ConfigError::NotAFile {
+        file: file.clone(),
+        reason,
+    };
+    // A FIFO would block for ever and a device could be read without end: only
+    // regular files, and no more than a config can sensibly be.
+    let meta = std::fs::metadata(path).map_err(read)?;
+    if !meta.is_file() {
+        let kind = if meta.is_dir() {
+            "a folder"
+        } else {
+            "not a regular file"
+        };
+        return Err(not_a_file(format!("it is {kind}")));
+    }
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)
+        .and_then(|f| f.take(MAX_CONFIG_BYTES + 1).read_to_end(&mut bytes))
+        .map_err(read)?;
+    if bytes.len() as u64 > MAX_CONFIG_BYTES {
+        return Err(not_a_file("it is larger than 1 MiB".to_owned()));
+    }
     let src = String::from_utf8(bytes).map_err(|_| ConfigError::NotText { file: file.clone() })?;
     parse(&src, &file)
 }
+
+/// The parser's message, and when the error stands in the value of a whole-number
+/// field (a fraction, a sign, too many digits), which field and what it allows.
+fn syntax_message(src: &str, (line, col): (usize, usize), message: &str) -> String {
+    let field = WHOLE
+        .iter()
+        .find(|(path, _)| locate_exact(src, path).is_some_and(|(l, c)| l == line && c <= col));
+    match field {
+        Some((path, allowed)) => {
+            format!("`{path}` must be a whole number; allowed: {allowed} ({message})")
+        }
+        None => message.to_owned(),
+    }
+}
+
+/// The largest config file read (bytes).
+const MAX_CONFIG_BYTES: u64 = 1 << 20;
 
 /// Parses and validates config text; `file` names it in errors.
 ///
 /// # Errors
 /// See [`ConfigSource::load`].
 pub fn parse(src: &str, file: &str) -> Result<Config, ConfigError> {
+    // Editors on Windows may start UTF-8 files with a byte-order mark.
+    let src = src.strip_prefix('\u{feff}').unwrap_or(src);
     let options =
         ron::Options::default().with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME);
-    let config: Config = options.from_str(src).map_err(|e| ConfigError::Syntax {
-        file: file.to_owned(),
-        line: e.span.start.line,
-        col: e.span.start.col,
-        message: e.code.to_string(),
+    let config: Config = options.from_str(src).map_err(|e| {
+        let (line, col) = (e.span.start.line, e.span.start.col);
+        ConfigError::Syntax {
+            file: file.to_owned(),
+            line,
+            col,
+            message: syntax_message(src, (line, col), &e.code.to_string()),
+        }
     })?;
     config.validate().map_err(|errs| ConfigError::Invalid {
         file: file.to_owned(),

@@ -39,11 +39,23 @@ struct Frame {
 /// 1-based line and column of the field at `path` in `src`, or of the deepest
 /// enclosing field that is written there; `None` if not even the first is.
 #[must_use]
+pub fn locate(src: &str, path: &str) -> Option<(usize, usize)> {
+    locate_deepest(src, path).map(|(_, at)| at)
+}
+
+/// Line and column of the field at `path` itself, if it is written in `src`.
+#[must_use]
+pub fn locate_exact(src: &str, path: &str) -> Option<(usize, usize)> {
+    let depth = parse_path(path).len();
+    locate_deepest(src, path).and_then(|(d, at)| (d == depth).then_some(at))
+}
+
+/// [`locate`] with the depth (path segments) of the field it found.
 #[expect(
     clippy::too_many_lines,
     reason = "a tokenizer: one match arm per RON token"
 )]
-pub fn locate(src: &str, path: &str) -> Option<(usize, usize)> {
+fn locate_deepest(src: &str, path: &str) -> Option<(usize, (usize, usize))> {
     let target = parse_path(path);
     let chars: Vec<char> = src.chars().collect();
     let mut line_starts = vec![0usize];
@@ -124,7 +136,7 @@ pub fn locate(src: &str, path: &str) -> Option<(usize, usize)> {
                     && matches!(s, Seg::Index(_))
                     && consider(path_of(&stack, Some(s.clone())), i, &mut best)
                 {
-                    return best.map(|(_, p)| p);
+                    return best;
                 }
                 stack.push(Frame {
                     seg,
@@ -157,7 +169,7 @@ pub fn locate(src: &str, path: &str) -> Option<(usize, usize)> {
                 if chars.get(j) == Some(&':') && chars.get(j + 1) != Some(&':') {
                     let key = Seg::Key(name.clone());
                     if consider(path_of(&stack, Some(key)), start, &mut best) {
-                        return best.map(|(_, p)| p);
+                        return best;
                     }
                     stack
                         .last_mut()
@@ -169,7 +181,7 @@ pub fn locate(src: &str, path: &str) -> Option<(usize, usize)> {
         }
         i += 1;
     }
-    best.map(|(_, p)| p)
+    best
 }
 
 #[cfg(test)]

@@ -5,6 +5,27 @@
 use super::{Config, ContactModel, LightConfig, MAX_BALLS, MaterialConfig, Rgb, Vec3};
 use std::fmt;
 
+/// The whole-number fields and what they allow: the messages for a value out of
+/// range, and for one that is not a whole number at all (`balls: 2.5`), which
+/// stops the parser before validation.
+pub const WHOLE: [(&str, &str); 7] = [
+    ("cradle.balls", "1..=200"),
+    ("start.lift", "0..=balls"),
+    ("render.width", "16..=8192 (pixels)"),
+    ("render.height", "16..=8192 (pixels)"),
+    ("render.max_depth", "0..=16"),
+    ("render.samples", "1..=64"),
+    ("render.threads", "0..=256 (0 = every core)"),
+];
+
+/// What the whole-number field `path` allows.
+fn whole(path: &str) -> &'static str {
+    WHOLE
+        .iter()
+        .find(|(p, _)| *p == path)
+        .map_or("a whole number", |(_, allowed)| allowed)
+}
+
 /// One invalid field.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FieldError {
@@ -198,16 +219,16 @@ impl Config {
 
         let r = &self.render;
         if !(16..=8192).contains(&r.width) {
-            c.fail("render.width", r.width, "16..=8192 (pixels)");
+            c.fail("render.width", r.width, whole("render.width"));
         }
         if !(16..=8192).contains(&r.height) {
-            c.fail("render.height", r.height, "16..=8192 (pixels)");
+            c.fail("render.height", r.height, whole("render.height"));
         }
         if r.max_depth > 16 {
-            c.fail("render.max_depth", r.max_depth, "0..=16");
+            c.fail("render.max_depth", r.max_depth, whole("render.max_depth"));
         }
         if !(1..=64).contains(&r.samples) {
-            c.fail("render.samples", r.samples, "1..=64");
+            c.fail("render.samples", r.samples, whole("render.samples"));
         }
         c.num(
             "render.adaptive_threshold",
@@ -216,7 +237,7 @@ impl Config {
             "0..=1 (sRGB difference)",
         );
         if r.threads > 256 {
-            c.fail("render.threads", r.threads, "0..=256 (0 = every core)");
+            c.fail("render.threads", r.threads, whole("render.threads"));
         }
         c.rgb("render.background", r.background);
 
