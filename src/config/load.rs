@@ -140,13 +140,41 @@ pub fn load_file(path: &Path) -> Result<Config, ConfigError> {
 /// The parser's message, and when the error stands in the value of a whole-number
 /// field (a fraction, a sign, too many digits), which field and what it allows.
 fn syntax_message(src: &str, (line, col): (usize, usize), message: &str) -> String {
+    let text: Vec<char> = src
+        .lines()
+        .nth(line.saturating_sub(1))
+        .unwrap_or("")
+        .chars()
+        .collect();
+    // The error stands in the value written from column `from`: nothing that ends
+    // a value lies between them.
+    let in_value = |from: usize| {
+        from >= 1
+            && from <= col
+            && text[(from - 1).min(text.len())..col.saturating_sub(1).min(text.len())]
+                .iter()
+                .all(|c| !matches!(c, ',' | '(' | ')' | '[' | ']'))
+    };
     let field = WHOLE
         .iter()
-        .find(|(path, _)| locate_exact(src, path).is_some_and(|(l, c)| l == line && c <= col));
-    match field {
-        Some((path, allowed)) => {
-            format!("`{path}` must be a whole number; allowed: {allowed} ({message})")
+        .find(|(path, _)| locate_exact(src, path).is_some_and(|(l, c)| l == line && in_value(c)));
+    if let Some((path, allowed)) = field {
+        return format!("`{path}` must be a whole number; allowed: {allowed} ({message})");
+    }
+    // Otherwise name the key written before the error on its line, if any.
+    let before: String = text.iter().take(col.saturating_sub(1)).collect();
+    let key = before.rsplit_once(':').and_then(|(head, value)| {
+        if value.contains([',', '(', ')', '[', ']']) {
+            return None;
         }
+        let name = head.trim_end();
+        let start = name
+            .rfind(|c: char| !(c.is_alphanumeric() || c == '_'))
+            .map_or(0, |i| i + 1);
+        Some(&name[start..]).filter(|k| !k.is_empty())
+    });
+    match key {
+        Some(k) => format!("in `{k}`: {message}"),
         None => message.to_owned(),
     }
 }
