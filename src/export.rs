@@ -1,11 +1,16 @@
-//! Writing pictures headless: PNG frames and animated GIFs.
+//! Writing pictures: PNG frames, animated GIFs and SVG plots, each under a
+//! temporary name in its folder and renamed into place only when complete, so
+//! that no file is ever half-written (a failed write, a full disk or Ctrl-C leaves
+//! the old file, or none). [`check_output`] refuses, before any work, a path that
+//! would replace the config being read or a file that is not a picture of ours.
 
 use crate::trace::Image;
 use std::fs::File;
-use std::io::BufWriter;
+use std::io::{BufWriter, Read, Write};
 use std::path::{Path, PathBuf};
+use std::sync::Mutex;
 
-/// An output file that could not be written: bad input (exit code 2).
+/// An output file that cannot be written.
 #[derive(Debug, thiserror::Error)]
 #[error("cannot write {}: {reason}", path.display())]
 pub struct WriteError {
@@ -13,85 +18,342 @@ pub struct WriteError {
     pub path: PathBuf,
     /// Why.
     pub reason: String,
+    /// Whether the path itself is at fault (a bad name, a folder that is a file,
+    /// no permission: bad input, exit code 2) rather than the writing (a full
+    /// disk, an I/O error: exit code 1).
+    pub bad_path: bool,
 }
 
+/// A path that must not or cannot be written: bad input.
+fn bad(path: &Path, reason: impl ToString) -> WriteError {
+    WriteError {
+        path: path.to_path_buf(),
+        reason: reason.to_string(),
+        bad_path: true,
+    }
+}
+
+/// A failure while encoding or writing: never the path's fault.
 fn fail(path: &Path, reason: impl ToString) -> WriteError {
     WriteError {
         path: path.to_path_buf(),
         reason: reason.to_string(),
+        bad_path: false,
     }
 }
 
-/// Creates `path` (and the folders above it) for writing.
+/// An I/O failure: bad input where the path is to blame (no such folder, no
+/// permission, a file where a folder should be), else a failure of the writing.
+fn io_fail(path: &Path, e: &std::io::Error) -> WriteError {
+    use std::io::ErrorKind as K;
+    let bad_path = matches!(
+        e.kind(),
+        K::PermissionDenied
+            | K::NotFound
+            | K::NotADirectory
+            | K::IsADirectory
+            | K::ReadOnlyFilesystem
+            | K::InvalidFilename
+    );
+    WriteError {
+        bad_path,
+        ..fail(path, e)
+    }
+}
+
+/// What a file holds: each kind has its extension and its signature.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Kind {
+    /// A PNG picture.
+    Png,
+    /// An animated GIF.
+    Gif,
+    /// An SVG plot.
+    Svg,
+}
+
+impl Kind {
+    fn extension(self) -> &'static str {
+        match self {
+            Self::Png => "png",
+            Self::Gif => "gif",
+            Self::Svg => "svg",
+        }
+    }
+
+    /// Whether `head`, a file's first bytes, is a file of this kind.
+    fn is_signed_by(self, head: &[u8]) -> bool {
+        match self {
+            Self::Png => head.starts_with(b"\x89PNG\r\n\x1a\n"),
+            Self::Gif => head.starts_with(b"GIF87a") || head.starts_with(b"GIF89a"),
+            Self::Svg => {
+                let text = String::from_utf8_lossy(head);
+                let t = text.trim_start();
+                t.starts_with("<svg") || t.starts_with("<?xml")
+            }
+        }
+    }
+}
+
+/// Checks that `path` can take a file of `kind`, before anything is computed: its
+/// extension is the kind's; its folder exists (it is created) and is a folder; and
+/// if a file is there already, it is not `input` (the config being read) and is a
+/// file of this kind, so replacing it loses nothing of the user's.
 ///
 /// # Errors
-/// When the folder or file cannot be created.
-pub fn create(path: &Path) -> Result<BufWriter<File>, WriteError> {
-    if let Some(parent) = path.parent().filter(|p| !p.as_os_str().is_empty()) {
-        std::fs::create_dir_all(parent).map_err(|e| fail(path, e))?;
+/// Any of these not holding, with what is allowed.
+pub fn check_output(path: &Path, kind: Kind, input: Option<&Path>) -> Result<(), WriteError> {
+    let ext = kind.extension();
+    let ok = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case(ext));
+    if !ok {
+        return Err(bad(path, format!("allowed: a .{ext} file name")));
     }
-    File::create(path)
-        .map(BufWriter::new)
-        .map_err(|e| fail(path, e))
+    create_folder(path)?;
+    let Ok(meta) = std::fs::symlink_metadata(path) else {
+        return Ok(());
+    };
+    if !meta.is_file() {
+        return Err(bad(path, "something other than a file is there"));
+    }
+    let same = |a: &Path, b: &Path| match (a.canonicalize(), b.canonicalize()) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => false,
+    };
+    if input.is_some_and(|i| same(path, i)) {
+        return Err(bad(path, "it is the config being read"));
+    }
+    let mut head = [0u8; 16];
+    let n = File::open(path)
+        .and_then(|mut f| f.read(&mut head))
+        .map_err(|e| io_fail(path, &e))?;
+    if !kind.is_signed_by(&head[..n]) {
+        return Err(bad(
+            path,
+            format!("a file that is not a .{ext} picture is there; refusing to replace it"),
+        ));
+    }
+    Ok(())
 }
 
-/// Writes an RGBA8 sRGB image as PNG.
+/// Creates the folders above `path`, with a plain message when one of them is a
+/// file.
+fn create_folder(path: &Path) -> Result<(), WriteError> {
+    let Some(parent) = path.parent().filter(|p| !p.as_os_str().is_empty()) else {
+        return Ok(());
+    };
+    if let Some(file) = parent.ancestors().find(|a| a.is_file()) {
+        return Err(bad(
+            path,
+            format!("{} is a file, not a folder", file.display()),
+        ));
+    }
+    std::fs::create_dir_all(parent).map_err(|e| io_fail(path, &e))
+}
+
+/// Temporary files being written: Ctrl-C removes them.
+static LIVE: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+/// Makes Ctrl-C remove the temporary files of unfinished writes before the
+/// program ends (exit code 130), so that none is left behind.
+pub fn clean_up_on_interrupt() {
+    let handler = || {
+        if let Ok(live) = LIVE.lock() {
+            for p in live.iter() {
+                let _ = std::fs::remove_file(p);
+            }
+        }
+        std::process::exit(130);
+    };
+    if let Err(e) = ctrlc::set_handler(handler) {
+        tracing::debug!("Ctrl-C clean-up is off: {e}");
+    }
+}
+
+/// A file being written under a temporary name beside `path`; [`Self::commit`]
+/// renames it into place, dropping it unfinished removes it.
+pub struct AtomicFile {
+    path: PathBuf,
+    tmp: PathBuf,
+    out: Option<BufWriter<File>>,
+}
+
+impl AtomicFile {
+    /// Starts writing what will become `path` (its folder must exist).
+    ///
+    /// # Errors
+    /// When the temporary file cannot be created.
+    pub fn create(path: &Path) -> Result<Self, WriteError> {
+        let name = path
+            .file_name()
+            .map_or_else(|| "out".into(), |n| n.to_string_lossy().into_owned());
+        let tmp = path.with_file_name(format!(".{name}.{}.part", std::process::id()));
+        let file = File::create(&tmp).map_err(|e| io_fail(path, &e))?;
+        if let Ok(mut live) = LIVE.lock() {
+            live.push(tmp.clone());
+        }
+        Ok(Self {
+            path: path.to_path_buf(),
+            tmp,
+            out: Some(BufWriter::new(file)),
+        })
+    }
+
+    /// Flushes the file to disk and renames it into place.
+    ///
+    /// # Errors
+    /// When writing, flushing or renaming fails (the temporary file is removed).
+    pub fn commit(mut self) -> Result<(), WriteError> {
+        let out = self.out.take().expect("taken only here");
+        let file = out
+            .into_inner()
+            .map_err(|e| io_fail(&self.path, e.error()))?;
+        file.sync_all().map_err(|e| io_fail(&self.path, &e))?;
+        drop(file);
+        std::fs::rename(&self.tmp, &self.path).map_err(|e| io_fail(&self.path, &e))?;
+        self.forget();
+        Ok(())
+    }
+
+    /// Stops tracking the temporary name (renamed or removed).
+    fn forget(&self) {
+        if let Ok(mut live) = LIVE.lock() {
+            live.retain(|p| p != &self.tmp);
+        }
+    }
+}
+
+impl Write for AtomicFile {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        self.out.as_mut().expect("taken only by commit").write(buf)
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        self.out.as_mut().expect("taken only by commit").flush()
+    }
+}
+
+impl Drop for AtomicFile {
+    fn drop(&mut self) {
+        if self.out.is_some() {
+            // Unfinished: leave no partial file behind.
+            self.out = None;
+            let _ = std::fs::remove_file(&self.tmp);
+            self.forget();
+        }
+    }
+}
+
+/// Writes `bytes` as `path`, atomically.
+///
+/// # Errors
+/// When the file cannot be written.
+pub fn write_all(path: &Path, bytes: &[u8]) -> Result<(), WriteError> {
+    create_folder(path)?;
+    let mut f = AtomicFile::create(path)?;
+    f.write_all(bytes).map_err(|e| io_fail(path, &e))?;
+    f.commit()
+}
+
+/// Writes an RGBA8 sRGB image as PNG, atomically.
 ///
 /// # Errors
 /// When the file cannot be created or written.
 pub fn write_png(path: &Path, img: &Image) -> Result<(), WriteError> {
-    let mut enc = png::Encoder::new(create(path)?, img.width, img.height);
-    enc.set_color(png::ColorType::Rgba);
-    enc.set_depth(png::BitDepth::Eight);
-    enc.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
-    let mut writer = enc.write_header().map_err(|e| fail(path, e))?;
-    writer
-        .write_image_data(&img.rgba)
-        .map_err(|e| fail(path, e))?;
-    writer.finish().map_err(|e| fail(path, e))
+    create_folder(path)?;
+    let mut f = AtomicFile::create(path)?;
+    {
+        let mut enc = png::Encoder::new(&mut f, img.width, img.height);
+        enc.set_color(png::ColorType::Rgba);
+        enc.set_depth(png::BitDepth::Eight);
+        enc.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
+        let mut writer = enc.write_header().map_err(|e| fail(path, e))?;
+        writer
+            .write_image_data(&img.rgba)
+            .map_err(|e| fail(path, e))?;
+        writer.finish().map_err(|e| fail(path, e))?;
+    }
+    f.commit()
 }
 
-/// An animated GIF being written frame by frame, looping for ever.
+/// An animated GIF being written frame by frame, looping for ever; it appears
+/// at its path only when [`Self::finish`] has written it whole.
 pub struct GifWriter {
     path: PathBuf,
-    encoder: gif::Encoder<BufWriter<File>>,
-    delay_cs: u16,
+    encoder: gif::Encoder<AtomicFile>,
+    delays: Delays,
+}
+
+/// GIF frame delays in centiseconds whose sum follows the frame times, so that
+/// 30 fps plays at 30 fps on average (3, 3, 4, 3, 3, 4, ..), not 33.3.
+#[derive(Debug, Clone, Copy)]
+pub struct Delays {
+    fps: f64,
+    frames: u64,
+}
+
+impl Delays {
+    /// Delays for `fps` frames per second.
+    #[must_use]
+    pub fn new(fps: f64) -> Self {
+        Self { fps, frames: 0 }
+    }
+
+    /// The next frame's delay: the centiseconds from its start to the next one's,
+    /// both rounded, at least 1.
+    pub fn next_delay(&mut self) -> u16 {
+        let cs = |n: u64| (n as f64 * 100.0 / self.fps).round();
+        let d = cs(self.frames + 1) - cs(self.frames);
+        self.frames += 1;
+        d.clamp(1.0, 65535.0) as u16
+    }
 }
 
 impl GifWriter {
     /// Starts a GIF of `width` x `height` at `fps` frames per second.
     ///
     /// # Errors
-    /// When the file cannot be created, or the size exceeds 65535.
+    /// When the size exceeds 65535 or the file cannot be created.
     pub fn create(path: &Path, width: u32, height: u32, fps: f64) -> Result<Self, WriteError> {
         let (w, h) = (
             u16::try_from(width).map_err(|e| fail(path, e))?,
             u16::try_from(height).map_err(|e| fail(path, e))?,
         );
-        let mut encoder = gif::Encoder::new(create(path)?, w, h, &[]).map_err(|e| fail(path, e))?;
+        create_folder(path)?;
+        let file = AtomicFile::create(path)?;
+        let mut encoder = gif::Encoder::new(file, w, h, &[]).map_err(|e| fail(path, e))?;
         encoder
             .set_repeat(gif::Repeat::Infinite)
             .map_err(|e| fail(path, e))?;
-        // GIF delays are in centiseconds.
-        let delay_cs = (100.0 / fps).round().clamp(1.0, 65535.0) as u16;
         Ok(Self {
             path: path.to_path_buf(),
             encoder,
-            delay_cs,
+            delays: Delays::new(fps),
         })
     }
 
     /// Appends a frame (quantised to 256 colours with `NeuQuant`).
     ///
     /// # Errors
-    /// When writing fails.
+    /// When encoding fails.
     pub fn push(&mut self, img: &Image) -> Result<(), WriteError> {
         let mut rgba = img.rgba.clone();
         let (w, h) = (img.width as u16, img.height as u16);
         let mut frame = gif::Frame::from_rgba_speed(w, h, &mut rgba, 10);
-        frame.delay = self.delay_cs;
+        frame.delay = self.delays.next_delay();
         self.encoder
             .write_frame(&frame)
             .map_err(|e| fail(&self.path, e))
+    }
+
+    /// Writes the trailer and the whole file, atomically.
+    ///
+    /// # Errors
+    /// When the file cannot be written.
+    pub fn finish(self) -> Result<(), WriteError> {
+        let file = self.encoder.into_inner().map_err(|e| fail(&self.path, e))?;
+        file.commit()
     }
 }

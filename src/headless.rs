@@ -2,7 +2,7 @@
 //! PNG, a numbered PNG sequence, or an animated GIF.
 
 use crate::config::Config;
-use crate::export::{self, GifWriter, WriteError};
+use crate::export::{self, GifWriter, Kind, WriteError};
 use crate::scene::CradleWorld;
 use crate::trace::{self, Image};
 use std::path::{Path, PathBuf};
@@ -22,12 +22,39 @@ pub enum Output {
     },
 }
 
+impl Output {
+    /// Checks the paths this output will write, before anything is traced
+    /// ([`export::check_output`]; a sequence's folder and its first frame).
+    ///
+    /// # Errors
+    /// A path that cannot or must not be written.
+    pub fn check(&self, input: Option<&Path>) -> Result<(), WriteError> {
+        match self {
+            Self::Png(p) => export::check_output(p, Kind::Png, input),
+            Self::Gif { path, .. } => export::check_output(path, Kind::Gif, input),
+            Self::Sequence { dir, .. } => {
+                export::check_output(&frame_path(dir, 0), Kind::Png, input)
+            }
+        }
+    }
+}
+
+/// Frame `n` of a sequence in `dir`.
+fn frame_path(dir: &Path, n: u32) -> PathBuf {
+    dir.join(format!("frame_{n:04}.png"))
+}
+
 /// Renders the cradle of `config` starting at simulated time `start` (s) on a
 /// pool of `config.render.threads` threads. Returns the files written.
 ///
 /// # Errors
 /// An output path that cannot be written.
-pub fn render(config: &Config, start: f64, output: &Output) -> anyhow::Result<Vec<PathBuf>> {
+pub fn render(
+    config: &Config,
+    start: f64,
+    output: &Output,
+    input: Option<&Path>,
+) -> anyhow::Result<Vec<PathBuf>> {
     let pool = trace::pool(config.render.threads)?;
     let mut world = CradleWorld::new(config);
     // Frames after the first re-trace only what the swing can change.
@@ -47,7 +74,10 @@ pub fn render(config: &Config, start: f64, output: &Output) -> anyhow::Result<Ve
         Output::Sequence { dir, frames, fps } => {
             let progress = crate::bench::progress_bar(u64::from(*frames), "frames");
             for n in 0..*frames {
-                let path = dir.join(format!("frame_{n:04}.png"));
+                let path = frame_path(dir, n);
+                // Each frame, as the first was before tracing: never over a file
+                // that is not a PNG, nor over the config.
+                export::check_output(&path, Kind::Png, input)?;
                 export::write_png(&path, &frame_at(start + f64::from(n) / fps))?;
                 written.push(path);
                 progress.inc(1);
@@ -63,6 +93,7 @@ pub fn render(config: &Config, start: f64, output: &Output) -> anyhow::Result<Ve
                 progress.inc(1);
             }
             progress.finish_and_clear();
+            gif.finish()?;
             written.push(path.clone());
         }
     }
@@ -73,7 +104,12 @@ pub fn render(config: &Config, start: f64, output: &Output) -> anyhow::Result<Ve
 ///
 /// # Errors
 /// As [`render`].
-pub fn run(config: &Config, start: f64, output: &Output) -> anyhow::Result<()> {
+pub fn run(
+    config: &Config,
+    start: f64,
+    output: &Output,
+    input: Option<&Path>,
+) -> anyhow::Result<()> {
     tracing::info!(
         "rendering {} at {}x{}",
         describe(output),
@@ -81,7 +117,7 @@ pub fn run(config: &Config, start: f64, output: &Output) -> anyhow::Result<()> {
         config.render.height
     );
     let clock = std::time::Instant::now();
-    let files = render(config, start, output)?;
+    let files = render(config, start, output, input)?;
     tracing::info!(
         "wrote {} file(s) in {:.2} s",
         files.len(),
@@ -93,7 +129,7 @@ pub fn run(config: &Config, start: f64, output: &Output) -> anyhow::Result<()> {
 /// Whether an error is a path the user gave that cannot be written (exit code 2).
 #[must_use]
 pub fn is_bad_path(e: &anyhow::Error) -> bool {
-    e.downcast_ref::<WriteError>().is_some()
+    e.downcast_ref::<WriteError>().is_some_and(|w| w.bad_path)
 }
 
 /// The folder and frames of a sequence, for logging.

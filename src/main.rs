@@ -49,6 +49,8 @@ fn main() -> ExitCode {
                 .unwrap_or_else(|_| tracing_subscriber::EnvFilter::new("info")),
         )
         .init();
+    // Ctrl-C removes the temporary files of unfinished writes.
+    newtons_cradle::export::clean_up_on_interrupt();
     match Job::from_cli(cli).map_err(Failure::from).and_then(run) {
         Ok(()) => ExitCode::SUCCESS,
         Err(Failure::Input(e)) => {
@@ -91,7 +93,8 @@ fn run(job: Job) -> Result<(), Failure> {
             config,
             time,
             output,
-        } => headless::run(&config, time, &output)?,
+            input,
+        } => headless::run(&config, time, &output, input.as_deref())?,
         Job::BenchRender {
             config,
             threads,

@@ -68,7 +68,8 @@ fn log_range(vals: impl Iterator<Item = f64>) -> std::ops::Range<f64> {
 /// When the file cannot be written.
 pub fn log_log_svg(path: &Path, panels: &[Panel], axes: Axes) -> anyhow::Result<()> {
     let width = 620 * u32::try_from(panels.len().max(1))?;
-    let root = SVGBackend::new(path, (width, 520)).into_drawing_area();
+    let mut svg = String::new();
+    let root = SVGBackend::with_string(&mut svg, (width, 520)).into_drawing_area();
     let draw = || -> Result<(), Box<dyn std::error::Error + '_>> {
         root.fill(&WHITE)?;
         let areas = root.split_evenly((1, panels.len().max(1)));
@@ -123,5 +124,9 @@ pub fn log_log_svg(path: &Path, panels: &[Panel], axes: Axes) -> anyhow::Result<
         root.present()?;
         Ok(())
     };
-    draw().map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))
+    draw().map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+    drop(root);
+    // Whole or not at all, as every picture we write.
+    crate::export::write_all(path, svg.as_bytes())?;
+    Ok(())
 }

@@ -6,9 +6,10 @@ use super::args::{
     BenchCommand, BenchMode, BenchPhysicsArgs, BenchQualityArgs, BenchRenderArgs, BenchStressArgs,
     Cli, Command, Common, RenderArgs, SimulateArgs,
 };
-use super::overrides::{InputError, flag_value};
+use super::overrides::{InputError, Short, flag_value};
 use crate::bench::physics::Plan;
 use crate::config::{Config, ConfigSource};
+use crate::export::{self, Kind};
 use crate::headless::Output;
 use std::path::PathBuf;
 
@@ -41,6 +42,8 @@ pub enum Job {
         time: f64,
         /// What to write.
         output: Output,
+        /// The config file being read, never to be replaced.
+        input: Option<PathBuf>,
     },
     /// `bench render`.
     BenchRender {
@@ -111,10 +114,20 @@ impl Job {
             }
             Some(Command::Render(a)) => {
                 let output = render_output(&a)?;
+                let (config, source) = load(&common)?;
+                // Before any tracing: a path that cannot or must not be written.
+                let input = match &source {
+                    ConfigSource::File(p) => Some(p.as_path()),
+                    ConfigSource::Builtin => None,
+                };
+                output
+                    .check(input)
+                    .map_err(|e| InputError::Flag(e.to_string()))?;
                 Self::Render {
-                    config: asset()?,
+                    config,
                     time: a.time,
                     output,
+                    input: input.map(std::path::Path::to_path_buf),
                 }
             }
             Some(Command::Bench(BenchCommand::Render(a))) => {
@@ -142,6 +155,7 @@ impl Job {
             Some(Command::Bench(BenchCommand::Physics(a))) => {
                 let dts = bench_physics_dts(&a)?;
                 let config = asset()?;
+                check_plot(a.plot.as_deref(), &common)?;
                 Self::BenchPhysics {
                     plan: Plan {
                         params: config.cradle_params(),
@@ -165,6 +179,7 @@ impl Job {
             }
             Some(Command::Bench(BenchCommand::RenderQuality(a))) => {
                 let frames = quality_frames(&a)?;
+                check_plot(a.plot.as_deref(), &common)?;
                 Self::BenchQuality {
                     config: asset()?,
                     frames,
@@ -181,6 +196,13 @@ fn load(common: &Common) -> Result<(Config, ConfigSource), InputError> {
     let (config, source) = common.load()?;
     tracing::info!("config: {source}");
     Ok((config, source))
+}
+
+/// Checks a `--plot` path before the benchmark runs ([`export::check_output`]).
+fn check_plot(plot: Option<&std::path::Path>, common: &Common) -> Result<(), InputError> {
+    let Some(path) = plot else { return Ok(()) };
+    export::check_output(path, Kind::Svg, common.config.as_deref())
+        .map_err(|e| InputError::Flag(e.to_string()))
 }
 
 /// Checks `bench stress`' flags.
@@ -203,8 +225,9 @@ fn check_simulate(a: &SimulateArgs) -> Result<(), InputError> {
     flag_value("--every", a.every, ok, "> 0 (s)")?;
     if a.duration / a.every > 1e8 {
         return Err(InputError::Flag(format!(
-            "--every {:?}: too small for --duration {:?}; allowed: at most 1e8 samples (every >= duration / 1e8)",
-            a.every, a.duration
+            "--every {}: too small for --duration {}; allowed: at most 1e8 samples (every >= duration / 1e8)",
+            a.every.short(),
+            a.duration.short()
         )));
     }
     Ok(())
@@ -226,6 +249,17 @@ fn render_output(a: &RenderArgs) -> Result<crate::headless::Output, InputError> 
             Some(flag_value("--frames", n, (1..=100_000).contains(&n), "1..=100000")? as u32)
         }
     };
+    // Every frame's time is capped, not just the first one's.
+    let last = a.time + f64::from(frames.unwrap_or(1).saturating_sub(1)) / a.fps;
+    if last > 1e6 {
+        return Err(InputError::Flag(format!(
+            "--time {} with --frames {} at --fps {} ends at {} s; allowed: every frame at most 1e6 s",
+            a.time.short(),
+            frames.unwrap_or(1),
+            a.fps.short(),
+            last.short()
+        )));
+    }
     match (&a.out, &a.gif, frames) {
         (Some(_), Some(_), _) => Err(InputError::Flag(
             "give either --out or --gif, not both".into(),

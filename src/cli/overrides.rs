@@ -34,18 +34,14 @@ impl Common {
         };
         add("cradle.balls", "--balls", self.balls.map(|v| v.to_string()));
         add("start.lift", "--lift", self.lift.map(|v| v.to_string()));
-        add(
-            "start.angle_deg",
-            "--angle",
-            self.angle.map(|v| format!("{v:?}")),
-        );
-        add("cradle.gap", "--gap", self.gap.map(|v| format!("{v:?}")));
+        add("start.angle_deg", "--angle", self.angle.map(|v| v.short()));
+        add("cradle.gap", "--gap", self.gap.map(|v| v.short()));
         add(
             "contact.model",
             "--contact",
             self.contact.map(|v| format!("{v:?}").to_lowercase()),
         );
-        add("physics.dt", "--dt", self.dt.map(|v| format!("{v:?}")));
+        add("physics.dt", "--dt", self.dt.map(|v| v.short()));
         add(
             "render.threads",
             "--threads",
@@ -153,7 +149,7 @@ impl From<IntegratorFlag> for Integrator {
 }
 
 /// `v` when `ok`; else the flag's error, naming what is allowed.
-pub(super) fn flag_value<T: std::fmt::Debug>(
+pub(super) fn flag_value<T: Short>(
     flag: &str,
     v: T,
     ok: bool,
@@ -163,8 +159,32 @@ pub(super) fn flag_value<T: std::fmt::Debug>(
         Ok(v)
     } else {
         Err(InputError::Flag(format!(
-            // Debug, not Display: 1e300 stays 1e300, not 301 digits.
-            "{flag} {v:?}: not allowed; allowed: {allowed}"
+            "{flag} {}: not allowed; allowed: {allowed}",
+            v.short()
         )))
+    }
+}
+
+/// A number as a message shows it: as typed for ordinary magnitudes, with an
+/// exponent for extreme ones (1e300, not 301 digits).
+pub(super) trait Short {
+    /// The text.
+    fn short(&self) -> String;
+}
+
+impl Short for f64 {
+    fn short(&self) -> String {
+        let a = self.abs();
+        if a != 0.0 && !(1e-5..1e16).contains(&a) {
+            format!("{self:e}")
+        } else {
+            format!("{self}")
+        }
+    }
+}
+
+impl Short for i64 {
+    fn short(&self) -> String {
+        self.to_string()
     }
 }
