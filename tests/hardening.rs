@@ -17,7 +17,7 @@ fn leftovers(dir: &Path) -> Vec<String> {
         .map(|d| {
             d.filter_map(Result::ok)
                 .map(|e| e.file_name().to_string_lossy().into_owned())
-                .filter(|n| n.ends_with(".part"))
+                .filter(|n| Path::new(n).extension().is_some_and(|e| e == "part"))
                 .collect()
         })
         .unwrap_or_default()
