@@ -21,11 +21,11 @@ fn bad_flags_exit_2_with_the_valid_range() {
         (&["--lift", "6"], "--lift 6: not allowed; allowed: 0..=5"),
         (
             &["--angle", "180"],
-            "--angle 180: not allowed; allowed: 0 <= angle < 180",
+            "--angle 180: not allowed; allowed: 0..=179.999",
         ),
         (
             &["--gap", "-0.01"],
-            "--gap -0.01: not allowed; allowed: >= 0",
+            "--gap -0.01: not allowed; allowed: 0..=10",
         ),
         (&["--dt", "0"], "--dt 0: not allowed; allowed: 1e-7..=0.1"),
         (

@@ -232,11 +232,11 @@ pub struct Common {
     /// Balls lifted from the left, 0..=balls.
     #[arg(value_parser = whole("0..=balls"), long, global = true, allow_negative_numbers = true, value_name = "K")]
     pub lift: Option<i64>,
-    /// Lift angle (degrees), 0 <= DEG < 180.
-    #[arg(value_parser = number("0 <= DEG < 180"), long, global = true, allow_negative_numbers = true, value_name = "DEG")]
+    /// Lift angle (degrees), 0..=179.999.
+    #[arg(value_parser = number("0..=179.999"), long, global = true, allow_negative_numbers = true, value_name = "DEG")]
     pub angle: Option<f64>,
-    /// Gap between neighbouring balls at rest (m), >= 0.
-    #[arg(value_parser = number(">= 0 (m)"), long, global = true, allow_negative_numbers = true, value_name = "M")]
+    /// Gap between neighbouring balls at rest (m), 0..=10.
+    #[arg(value_parser = number("0..=10 (m)"), long, global = true, allow_negative_numbers = true, value_name = "M")]
     pub gap: Option<f64>,
     /// Contact model.
     #[arg(long, global = true, value_enum)]

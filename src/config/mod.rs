@@ -98,7 +98,7 @@ impl Default for CradleConfig {
 pub struct StartConfig {
     /// How many balls, from the left, are lifted: 0..=balls. Default 1.
     pub lift: usize,
-    /// Lift angle (degrees from the vertical, pulled to the left), 0 <= angle < 180.
+    /// Lift angle (degrees from the vertical, pulled to the left), 0..=179.999.
     /// Default 30.
     pub angle_deg: f64,
     /// Whether the app starts swinging (true) or paused with the balls held up

@@ -18,6 +18,11 @@ pub const WHOLE: [(&str, &str); 7] = [
     ("render.threads", "0..=256 (0 = every core)"),
 ];
 
+/// The largest lift angle (degrees): at 1e-3 degrees from the top the modulus of
+/// the flight is 4e-11 from 1, thousands of ulps; much nearer, the round-off of
+/// an impact can carry a ball over the top (seen at 179.999999).
+pub const MAX_ANGLE_DEG: f64 = 179.999;
+
 /// What the whole-number field `path` allows.
 fn whole(path: &str) -> &'static str {
     WHOLE
@@ -68,9 +73,14 @@ impl Checker {
         }
     }
 
-    fn vec3(&mut self, path: &str, v: Vec3) {
-        if v.iter().any(|x| !x.is_finite()) {
-            self.fail(path, v, "three finite numbers (m)");
+    /// Three finite numbers, each within `+-limit`.
+    fn vec3(&mut self, path: &str, v: Vec3, limit: f64) {
+        if v.iter().any(|x| !x.is_finite() || x.abs() > limit) {
+            self.fail(
+                path,
+                v,
+                &format!("three numbers, each within +-{limit:e} (m)"),
+            );
         }
     }
 
@@ -123,8 +133,21 @@ impl Config {
         if !(1..=MAX_BALLS).contains(&k.balls) {
             c.fail("cradle.balls", k.balls, &format!("1..={MAX_BALLS}"));
         }
-        c.num("cradle.radius", k.radius, k.radius > 0.0, "> 0 (m)");
-        c.num("cradle.density", k.density, k.density > 0.0, "> 0 (kg/m^3)");
+        // Ranges keep every mass, energy and period finite and normal, and the
+        // work of a simulated second bounded (a pendulum of 1e-4 m under 1e4 m/s^2
+        // swings 1600 times a second).
+        c.num(
+            "cradle.radius",
+            k.radius,
+            (1e-4..=10.0).contains(&k.radius),
+            "1e-4..=10 (m)",
+        );
+        c.num(
+            "cradle.density",
+            k.density,
+            (1.0..=1e5).contains(&k.density),
+            "1..=1e5 (kg/m^3)",
+        );
         // Checks against the radius only make sense once the radius itself is valid;
         // otherwise one typo would report four fields.
         let r_ok = k.radius.is_finite() && k.radius > 0.0;
@@ -132,17 +155,22 @@ impl Config {
         c.num(
             "cradle.length",
             k.length,
-            !r_ok || k.length > r,
-            &format!("> radius = {r} (m)"),
+            k.length <= 1e4 && (!r_ok || k.length > r),
+            &format!("> radius = {r} and <= 1e4 (m)"),
         );
-        c.num("cradle.gap", k.gap, k.gap >= 0.0, ">= 0 (m)");
+        c.num(
+            "cradle.gap",
+            k.gap,
+            (0.0..=10.0).contains(&k.gap),
+            "0..=10 (m)",
+        );
         if k.length.is_finite() {
             c.num(
                 "cradle.pivot_height",
                 k.pivot_height,
-                k.pivot_height > k.length + r,
+                k.pivot_height > k.length + r && k.pivot_height <= 2e4,
                 &format!(
-                    "> length + radius = {} (m), so balls clear the floor",
+                    "> length + radius = {} (m), so balls clear the floor, and <= 2e4",
                     k.length + r
                 ),
             );
@@ -150,10 +178,15 @@ impl Config {
         c.num(
             "cradle.rail_spread",
             k.rail_spread,
-            !r_ok || k.rail_spread > r,
-            &format!("> radius = {r} (m)"),
+            k.rail_spread <= 1e4 && (!r_ok || k.rail_spread > r),
+            &format!("> radius = {r} and <= 1e4 (m)"),
         );
-        c.num("cradle.gravity", k.gravity, k.gravity > 0.0, "> 0 (m/s^2)");
+        c.num(
+            "cradle.gravity",
+            k.gravity,
+            (1e-3..=1e4).contains(&k.gravity),
+            "1e-3..=1e4 (m/s^2)",
+        );
         c.num(
             "cradle.string_radius",
             k.string_radius,
@@ -163,8 +196,8 @@ impl Config {
         c.num(
             "cradle.frame_radius",
             k.frame_radius,
-            k.frame_radius > 0.0,
-            "> 0 (m)",
+            k.frame_radius > 0.0 && k.frame_radius <= 10.0,
+            "> 0 and <= 10 (m)",
         );
 
         let s = &self.start;
@@ -178,8 +211,8 @@ impl Config {
         c.num(
             "start.angle_deg",
             s.angle_deg,
-            (0.0..180.0).contains(&s.angle_deg),
-            "0 <= angle < 180 (degrees)",
+            (0.0..=MAX_ANGLE_DEG).contains(&s.angle_deg),
+            "0..=179.999 (degrees; nearer the top, round-off in the impacts can carry a ball over it)",
         );
 
         let ct = &self.contact;
@@ -199,8 +232,8 @@ impl Config {
         c.num(
             "contact.youngs_modulus",
             ct.youngs_modulus,
-            ct.youngs_modulus > 0.0,
-            "> 0 (Pa)",
+            (1e5..=1e13).contains(&ct.youngs_modulus),
+            "1e5..=1e13 (Pa)",
         );
         c.num(
             "contact.poisson_ratio",
@@ -242,13 +275,28 @@ impl Config {
         c.rgb("render.background", r.background);
 
         let cam = &self.camera;
-        c.vec3("camera.position", cam.position);
-        c.vec3("camera.look_at", cam.look_at);
-        if cam.position == cam.look_at {
+        // The tracer works in f32: an eye further out than 100 m rounds its hit
+        // points by more than the 2e-5 m secondary rays start off a surface
+        // (speckled shadows), and an eye too near its target has no direction.
+        c.vec3("camera.position", cam.position, 100.0);
+        c.vec3("camera.look_at", cam.look_at, 100.0);
+        let far = cam
+            .position
+            .iter()
+            .chain(&cam.look_at)
+            .fold(0.0_f64, |m, x| m.max(x.abs()));
+        let apart = cam
+            .position
+            .iter()
+            .zip(&cam.look_at)
+            .map(|(a, b)| (a - b) * (a - b))
+            .sum::<f64>()
+            .sqrt();
+        if apart < 1e-3_f64.max(1e-4 * far) {
             c.fail(
                 "camera.look_at",
                 cam.look_at,
-                "a point other than camera.position",
+                "a point at least 1e-3 m (and 1e-4 of the coordinates) from camera.position",
             );
         }
         c.num(
@@ -270,7 +318,7 @@ impl Config {
                     color,
                     intensity,
                 } => {
-                    c.vec3(&format!("{p}.position"), *position);
+                    c.vec3(&format!("{p}.position"), *position, 1e4);
                     (color, intensity)
                 }
                 LightConfig::Directional {
@@ -278,9 +326,13 @@ impl Config {
                     color,
                     intensity,
                 } => {
-                    c.vec3(&format!("{p}.direction"), *direction);
-                    if direction.iter().all(|x| *x == 0.0) {
-                        c.fail(&format!("{p}.direction"), direction, "a non-zero direction");
+                    c.vec3(&format!("{p}.direction"), *direction, 1e4);
+                    if direction.iter().all(|x| x.abs() < 1e-6) {
+                        c.fail(
+                            &format!("{p}.direction"),
+                            direction,
+                            "a direction with a component of at least 1e-6",
+                        );
                     }
                     (color, intensity)
                 }

@@ -105,7 +105,8 @@ pub fn light(l: &LightConfig) -> trace::Light {
             color,
             intensity,
         } => trace::Light::Directional {
-            direction: f32x3(*direction).normalize(),
+            // Normalized in f64: an f32 copy of a tiny or huge vector would lose it.
+            direction: glam::DVec3::from(*direction).normalize().as_vec3(),
             color: lit(*color, *intensity),
         },
     }

@@ -202,11 +202,16 @@ impl ExactEngine {
             // Touching or overlapping: step on the grid anchored at the last event
             // until the pair presses (an impulse) or comes apart (a free flight).
             let mut j = ((t0 - self.t_event) / step).ceil().max(0.0);
+            let mut last = f64::NEG_INFINITY;
             loop {
                 let s = self.t_event + j * step;
-                if s > t1 {
-                    return None;
+                // A step below f64's resolution of time would never reach t1:
+                // treat the pair as apart from here (the config's ranges keep
+                // steps far above it).
+                if s > t1 || s <= last {
+                    return (s <= last).then(|| self.free_impact_in(a, s, t1)).flatten();
                 }
+                last = s;
                 if s >= t0 {
                     if self.pressing(a, s) {
                         return Some(s);

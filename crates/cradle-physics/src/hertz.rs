@@ -234,6 +234,15 @@ pub fn run_phase(
             let (ys, _) = dopri_step(&sys, &y, stop - t, &scale, &mut k_buf);
             return end(stop, &ys, false, contacts);
         }
+        if t + h == t {
+            // The step is below f64's resolution of time here: nothing could ever
+            // advance. The ranges of the config keep this from happening; should
+            // it, the contact ends here rather than the program hanging.
+            tracing::warn!(
+                "contact step {h:e} s is below the resolution of t = {t} s; contact ended"
+            );
+            return end(t, &y, true, contacts);
+        }
         t += h;
         y = y1;
         steps += 1;
