@@ -67,6 +67,59 @@ fn line(out: &mut impl Write, value: &impl Serialize) -> io::Result<()> {
     writeln!(out)
 }
 
+/// Keeps a long run talking: its lines leave the buffer at least every 0.1 s
+/// of wall time, and once it is clear that the run will take more than a
+/// minute, stderr says about how long.
+struct Feedback {
+    start: Instant,
+    flushed: Instant,
+    duration: f64,
+    warned: bool,
+}
+
+impl Feedback {
+    fn new(start: Instant, duration: f64) -> Self {
+        Self {
+            start,
+            flushed: start,
+            duration,
+            warned: false,
+        }
+    }
+
+    /// After the sample at simulated time `t`.
+    fn after(&mut self, t: f64, out: &mut impl Write) -> io::Result<()> {
+        if self.flushed.elapsed().as_secs_f64() < 0.1 {
+            return Ok(());
+        }
+        out.flush()?;
+        self.flushed = Instant::now();
+        let spent = self.start.elapsed().as_secs_f64();
+        if !self.warned && spent >= 1.0 && t > 0.0 {
+            let left = spent * (self.duration / t - 1.0);
+            if left > 60.0 {
+                tracing::warn!(
+                    "this run will take about {} more (from its first {spent:.0} s); Ctrl-C stops it",
+                    human(left)
+                );
+                self.warned = true;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Seconds as a person reads them.
+fn human(s: f64) -> String {
+    match s {
+        s if s < 120.0 => format!("{s:.0} s"),
+        s if s < 7200.0 => format!("{:.0} min", s / 60.0),
+        s if s < 172_800.0 => format!("{:.0} h", s / 3600.0),
+        s if s < 6.3e7 => format!("{:.0} days", s / 86_400.0),
+        s => format!("{:.0} years", s / 3.156e7),
+    }
+}
+
 /// Number of samples `n = 0..=count` with `n * every <= duration` (within 1e-9).
 #[must_use]
 pub fn sample_count(duration: f64, every: f64) -> u64 {
@@ -104,10 +157,17 @@ pub fn simulate(
     let mut cradle = config.build_cradle();
     let e0 = cradle.initial_energy();
     let (mut max_err, mut e_last, mut collisions) = (0.0_f64, e0, 0);
+    let mut feedback = Feedback::new(start, duration);
     for n in 0..=sample_count(duration, every) {
         let t = n as f64 * every;
         let s = cradle.snapshot(t);
         let e = cradle.energy(&s);
+        if !(e.is_finite() && s.theta.iter().chain(&s.omega).all(|x| x.is_finite())) {
+            // Never a null in the JSON: stop, and say where.
+            return Err(io::Error::other(format!(
+                "the state stopped being finite at t = {t} s; this is a bug: please report it with the config"
+            )));
+        }
         max_err = max_err.max(cradle.energy_rel_error(&s).abs());
         e_last = e;
         collisions = s.collisions;
@@ -119,6 +179,7 @@ pub fn simulate(
             collisions: s.collisions,
         };
         line(out, &sample)?;
+        feedback.after(t, out)?;
     }
     let summary = Summary {
         duration,

@@ -46,6 +46,31 @@ pub enum Effect {
     Quit,
 }
 
+/// The most pixels the window traces per frame (4K): beyond it a frame takes
+/// seconds and the window stops answering keys. `render` takes any size.
+pub const MAX_WINDOW_PIXELS: u32 = 3840 * 2160;
+
+/// Shrinks the picture size of `config`, keeping its shape, to at most
+/// [`MAX_WINDOW_PIXELS`]; the log says so when it does.
+pub fn fit_window(config: &mut Config) {
+    let r = &mut config.render;
+    let pixels = f64::from(r.width) * f64::from(r.height);
+    if pixels <= f64::from(MAX_WINDOW_PIXELS) {
+        return;
+    }
+    let k = (f64::from(MAX_WINDOW_PIXELS) / pixels).sqrt();
+    let (w, h) = (
+        ((f64::from(r.width) * k) as u32).max(16),
+        ((f64::from(r.height) * k) as u32).max(16),
+    );
+    tracing::warn!(
+        "the window traces {w}x{h}, not {}x{}: at most 3840x2160 pixels keep it answering; `newtons-cradle render` takes any size",
+        r.width,
+        r.height
+    );
+    (r.width, r.height) = (w, h);
+}
+
 /// A line of HUD text and its colour.
 pub type HudLine = (String, [u8; 3]);
 
@@ -76,7 +101,12 @@ impl Session {
     ///
     /// # Errors
     /// When the tracing threads cannot be started.
-    pub fn new(config: Config, source: ConfigSource, overrides: Common) -> anyhow::Result<Self> {
+    pub fn new(
+        mut config: Config,
+        source: ConfigSource,
+        overrides: Common,
+    ) -> anyhow::Result<Self> {
+        fit_window(&mut config);
         Ok(Self {
             pool: trace::pool(config.render.threads)?,
             world: CradleWorld::new(&config),
@@ -180,7 +210,10 @@ impl Session {
                 Ok(c)
             });
         let config = match loaded {
-            Ok(c) => c,
+            Ok(mut c) => {
+                fit_window(&mut c);
+                c
+            }
             Err(e) => {
                 tracing::error!("config not reloaded: {e}");
                 self.error = Some(e.to_string());

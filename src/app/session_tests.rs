@@ -170,3 +170,17 @@ fn a_refused_framebuffer_keeps_the_scene() {
     assert!(s.error().is_some_and(|e| e.contains("no texture")));
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn the_window_traces_at_most_4k_pixels_keeping_the_shape() {
+    let mut config = Config::default();
+    (config.render.width, config.render.height) = (8192, 8192);
+    super::fit_window(&mut config);
+    let (w, h) = (config.render.width, config.render.height);
+    assert!(w * h <= super::MAX_WINDOW_PIXELS, "{w}x{h}");
+    assert_eq!(w, h, "square stays square");
+    assert!(w > 2800, "{w}: no smaller than it must be");
+    let mut small = Config::default();
+    super::fit_window(&mut small);
+    assert_eq!(small, Config::default(), "sizes within the cap are kept");
+}

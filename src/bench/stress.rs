@@ -353,7 +353,11 @@ pub fn report(scale: f64, json: bool, out: &mut impl Write) -> anyhow::Result<()
         )?;
     }
     let mut failed = Vec::new();
-    for s in scenarios(scale) {
+    let all = scenarios(scale);
+    let count = all.len();
+    for (i, s) in all.into_iter().enumerate() {
+        // Some scenarios take a minute at large scales: say which one runs.
+        tracing::info!("stress {}/{count}: {}", i + 1, s.name);
         let r = run(&s);
         if json {
             writeln!(out, "{}", serde_json::to_string(&r)?)?;

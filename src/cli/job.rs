@@ -155,6 +155,11 @@ impl Job {
             Some(Command::Bench(BenchCommand::Physics(a))) => {
                 let dts = bench_physics_dts(&a)?;
                 let config = asset()?;
+                ignored(
+                    &common,
+                    &["--angle"],
+                    "bench physics runs its own cradle (5 touching balls, 1 lifted, ideal impacts, every integrator and step) with the asset's geometry",
+                );
                 check_plot(a.plot.as_deref(), &common)?;
                 Self::BenchPhysics {
                     plan: Plan {
@@ -170,6 +175,11 @@ impl Job {
             }
             Some(Command::Bench(BenchCommand::Stress(a))) => {
                 let scale = bench_stress_scale(&a)?;
+                ignored(
+                    &common,
+                    &[],
+                    "bench stress runs its fixed scenarios with the exact engine",
+                );
                 // The scenarios are fixed, but a bad asset or flag is still refused.
                 asset()?;
                 Self::BenchStress {
@@ -188,6 +198,18 @@ impl Job {
                 }
             }
         })
+    }
+}
+
+/// Warns about override flags a command does not use (all but `used`).
+fn ignored(common: &Common, used: &[&str], why: &str) {
+    let unused: Vec<&str> = common
+        .given_flags()
+        .into_iter()
+        .filter(|f| !used.contains(f))
+        .collect();
+    if !unused.is_empty() {
+        tracing::warn!("{why}: {} not used", unused.join(", "));
     }
 }
 

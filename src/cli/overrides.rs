@@ -24,6 +24,16 @@ fn count<T: TryFrom<i64>>(v: i64, fail: T) -> T {
 }
 
 impl Common {
+    /// The names of the override flags given, in schema order.
+    #[must_use]
+    pub fn given_flags(&self) -> Vec<&'static str> {
+        let mut flags: Vec<&'static str> = self.given().into_iter().map(|g| g.1).collect();
+        if self.integrator.is_some() {
+            flags.push("--integrator");
+        }
+        flags
+    }
+
     /// The flags given, as `(config field path, flag name, value as typed)`.
     fn given(&self) -> Vec<(&'static str, &'static str, String)> {
         let mut out = Vec::new();
