@@ -106,7 +106,7 @@ fn a_long_simulation_streams_its_lines_and_says_how_long_it_will_take() {
     // Generous: each sample takes a fraction of a second; a buffered stream would
     // hold these for minutes.
     let first: Vec<String> = (0..3)
-        .map_while(|_| rx.recv_timeout(Duration::from_secs(120)).ok())
+        .map_while(|_| rx.recv_timeout(Duration::from_mins(2)).ok())
         .collect();
     child.kill().ok();
     let mut err = String::new();

@@ -130,7 +130,15 @@ impl Job {
                     input: input.map(std::path::Path::to_path_buf),
                 }
             }
-            Some(Command::Bench(BenchCommand::Render(a))) => {
+            Some(Command::Bench(cmd)) => Self::bench(cmd, &common)?,
+        })
+    }
+
+    /// The `bench` subcommands' jobs.
+    fn bench(cmd: BenchCommand, common: &Common) -> Result<Self, InputError> {
+        let asset = || load(common).map(|(config, _)| config);
+        Ok(match cmd {
+            BenchCommand::Render(a) => {
                 let frames = bench_frames(&a)?;
                 let config = asset()?;
                 let cores = std::thread::available_parallelism().map_or(1, std::num::NonZero::get);
@@ -152,15 +160,15 @@ impl Job {
                     json: a.json,
                 }
             }
-            Some(Command::Bench(BenchCommand::Physics(a))) => {
+            BenchCommand::Physics(a) => {
                 let dts = bench_physics_dts(&a)?;
                 let config = asset()?;
                 ignored(
-                    &common,
+                    common,
                     &["--angle"],
                     "bench physics runs its own cradle (5 touching balls, 1 lifted, ideal impacts, every integrator and step) with the asset's geometry",
                 );
-                check_plot(a.plot.as_deref(), &common)?;
+                check_plot(a.plot.as_deref(), common)?;
                 Self::BenchPhysics {
                     plan: Plan {
                         params: config.cradle_params(),
@@ -173,10 +181,10 @@ impl Job {
                     plot: a.plot,
                 }
             }
-            Some(Command::Bench(BenchCommand::Stress(a))) => {
+            BenchCommand::Stress(a) => {
                 let scale = bench_stress_scale(&a)?;
                 ignored(
-                    &common,
+                    common,
                     &[],
                     "bench stress runs its fixed scenarios with the exact engine",
                 );
@@ -187,9 +195,9 @@ impl Job {
                     json: a.json,
                 }
             }
-            Some(Command::Bench(BenchCommand::RenderQuality(a))) => {
+            BenchCommand::RenderQuality(a) => {
                 let frames = quality_frames(&a)?;
-                check_plot(a.plot.as_deref(), &common)?;
+                check_plot(a.plot.as_deref(), common)?;
                 Self::BenchQuality {
                     config: asset()?,
                     frames,
