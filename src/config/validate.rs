@@ -79,7 +79,7 @@ impl Checker {
             self.fail(
                 path,
                 v,
-                &format!("three numbers, each within +-{limit:e} (m)"),
+                &format!("three numbers, each within +-{limit} (m)"),
             );
         }
     }
