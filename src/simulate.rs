@@ -92,8 +92,6 @@ impl Feedback {
         if self.flushed.elapsed().as_secs_f64() < 0.1 {
             return Ok(());
         }
-        out.flush()?;
-        self.flushed = Instant::now();
         let spent = self.start.elapsed().as_secs_f64();
         if !self.warned && spent >= 1.0 && t > 0.0 {
             let left = spent * (self.duration / t - 1.0);
@@ -105,6 +103,9 @@ impl Feedback {
                 self.warned = true;
             }
         }
+        // After the warning, so a reader of the lines has seen it by then.
+        out.flush()?;
+        self.flushed = Instant::now();
         Ok(())
     }
 }
