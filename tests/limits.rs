@@ -140,3 +140,11 @@ fn flags_a_benchmark_does_not_use_are_named() {
     let e = stderr(&o);
     assert!(e.contains("--balls, --dt not used"), "{e}");
 }
+
+#[test]
+fn the_stress_suite_says_which_scenario_runs() {
+    let o = run(&["bench", "stress", "--json", "--scale", "0.01"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(e.contains("stress 1/") && e.contains("200 balls"), "{e}");
+}

@@ -1,7 +1,7 @@
 //! Reading the asset: which file, parsing RON, and errors that say where.
 
 use super::Config;
-use super::locate::{locate, locate_exact};
+use super::locate::locate_exact;
 use super::validate::{FieldError, WHOLE};
 use std::fmt;
 use std::io::Read;
@@ -204,7 +204,7 @@ pub fn parse(src: &str, file: &str) -> Result<Config, ConfigError> {
         file: file.to_owned(),
         errors: errs
             .into_iter()
-            .map(|e| (locate(src, &e.path), e))
+            .map(|e| (locate_exact(src, &e.path), e))
             .collect(),
     })?;
     Ok(config)

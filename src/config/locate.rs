@@ -36,21 +36,16 @@ struct Frame {
     pending_key: Option<String>,
 }
 
-/// 1-based line and column of the field at `path` in `src`, or of the deepest
-/// enclosing field that is written there; `None` if not even the first is.
-#[must_use]
-pub fn locate(src: &str, path: &str) -> Option<(usize, usize)> {
-    locate_deepest(src, path).map(|(_, at)| at)
-}
-
-/// Line and column of the field at `path` itself, if it is written in `src`.
+/// 1-based line and column of the field at `path` itself, if it is written in
+/// `src`; `None` when it is not (an error about it then names no line that does
+/// not hold it).
 #[must_use]
 pub fn locate_exact(src: &str, path: &str) -> Option<(usize, usize)> {
     let depth = parse_path(path).len();
     locate_deepest(src, path).and_then(|(d, at)| (d == depth).then_some(at))
 }
 
-/// [`locate`] with the depth (path segments) of the field it found.
+/// The deepest field on `path` written in `src`, with its depth (path segments).
 #[expect(
     clippy::too_many_lines,
     reason = "a tokenizer: one match arm per RON token"
@@ -186,26 +181,27 @@ fn locate_deepest(src: &str, path: &str) -> Option<(usize, (usize, usize))> {
 
 #[cfg(test)]
 mod tests {
-    use super::locate;
+    use super::locate_exact;
 
     const SRC: &str = "// comment: radius: 1\n(\n  cradle: (\n    balls: 5, /* gap: 1 */\n    radius: 0.02,\n  ),\n  lights: [\n    Ambient(color: (1, 1, 1), intensity: 0.1),\n    Point(position: (0, 1, 2), color: (1, 1, 1), intensity: -3),\n  ],\n)\n";
 
     #[test]
     fn finds_nested_keys_past_comments() {
-        assert_eq!(locate(SRC, "cradle.radius"), Some((5, 5)));
-        assert_eq!(locate(SRC, "cradle.balls"), Some((4, 5)));
+        assert_eq!(locate_exact(SRC, "cradle.radius"), Some((5, 5)));
+        assert_eq!(locate_exact(SRC, "cradle.balls"), Some((4, 5)));
     }
 
     #[test]
     fn finds_fields_inside_list_elements() {
-        assert_eq!(locate(SRC, "lights[1].intensity"), Some((9, 50)));
-        assert_eq!(locate(SRC, "lights[0].intensity"), Some((8, 31)));
+        assert_eq!(locate_exact(SRC, "lights[1].intensity"), Some((9, 50)));
+        assert_eq!(locate_exact(SRC, "lights[0].intensity"), Some((8, 31)));
     }
 
     #[test]
-    fn falls_back_to_the_deepest_written_ancestor() {
-        // `gap` appears only inside a comment, so the error points at `cradle`.
-        assert_eq!(locate(SRC, "cradle.gap"), Some((3, 3)));
-        assert_eq!(locate(SRC, "camera.fov_deg"), None);
+    fn a_field_not_written_is_not_located_at_its_section() {
+        // `gap` appears only inside a comment: no line holds it, and an error about
+        // it must not point at `cradle`'s line.
+        assert_eq!(locate_exact(SRC, "cradle.gap"), None);
+        assert_eq!(locate_exact(SRC, "camera.fov_deg"), None);
     }
 }
