@@ -58,8 +58,10 @@ impl Canvas<'_> {
         }
     }
 
-    /// Draws lines of text in a shaded box at the top-left; returns the box height.
+    /// Draws lines of text in a shaded box at the top-left, wrapped at the frame's
+    /// width (a long config error keeps its allowed range); returns the box height.
     pub fn panel(&mut self, y: usize, lines: &[(String, [u8; 3])]) -> usize {
+        let lines = wrap(lines, (self.width.saturating_sub(16) / (8 * SCALE)).max(8));
         let longest = lines
             .iter()
             .map(|(l, _)| l.chars().count())
@@ -71,5 +73,58 @@ impl Canvas<'_> {
             self.text(8, y + 4 + i * LINE, line, *color);
         }
         h
+    }
+}
+
+/// `lines` broken at spaces (or mid-word when a word is longer) into lines of at
+/// most `chars` characters, each keeping its colour.
+#[must_use]
+pub fn wrap(lines: &[(String, [u8; 3])], chars: usize) -> Vec<(String, [u8; 3])> {
+    let mut out = Vec::new();
+    for (line, color) in lines {
+        let mut current = String::new();
+        for word in line.split(' ') {
+            let fits =
+                current.chars().count() + usize::from(!current.is_empty()) + word.chars().count()
+                    <= chars;
+            if !fits && !current.is_empty() {
+                out.push((std::mem::take(&mut current), *color));
+            }
+            if !current.is_empty() {
+                current.push(' ');
+            }
+            current.push_str(word);
+            while current.chars().count() > chars {
+                let head: String = current.chars().take(chars).collect();
+                current = current.chars().skip(chars).collect();
+                out.push((head, *color));
+            }
+        }
+        out.push((current, *color));
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::wrap;
+
+    #[test]
+    fn long_lines_wrap_at_spaces_and_keep_every_character() {
+        let red = [255, 0, 0];
+        let line = "config error: cradle.balls is 0; allowed: 1..=200".to_owned();
+        let out = wrap(&[(line.clone(), red)], 20);
+        assert!(
+            out.iter()
+                .all(|(l, c)| l.chars().count() <= 20 && *c == red),
+            "{out:?}"
+        );
+        let joined: Vec<&str> = out.iter().map(|(l, _)| l.as_str()).collect();
+        assert_eq!(joined.join(" "), line, "nothing lost");
+        let long = wrap(&[("x".repeat(45), red)], 20);
+        assert_eq!(
+            long.iter().map(|(l, _)| l.len()).collect::<Vec<_>>(),
+            [20, 20, 5]
+        );
     }
 }

@@ -4,21 +4,42 @@
 use crate::trace::Image;
 use std::path::Path;
 
-/// Saves the `width x height` RGBA8 `frame`; the log says where, or why not.
+/// Saves the `width x height` RGBA8 `frame` on a thread of its own, so that
+/// encoding never stalls the swing; the log says where, or why not.
 pub fn save(width: u32, height: u32, frame: &[u8]) {
-    let secs = std::time::SystemTime::now()
-        .duration_since(std::time::UNIX_EPOCH)
-        .map_or(0, |d| d.as_secs());
-    let name = format!("newtons-cradle-{}.png", utc_stamp(secs));
     let img = Image {
         width,
         height,
         rgba: frame.to_vec(),
     };
-    match crate::export::write_png(Path::new(&name), &img) {
-        Ok(()) => tracing::info!("saved screenshot {name}"),
-        Err(e) => tracing::error!("screenshot not saved: {e}"),
+    let secs = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.as_secs());
+    let stamp = utc_stamp(secs);
+    std::thread::spawn(move || {
+        // One name at a time, so two saves in one second cannot pick the same.
+        static NAMING: std::sync::Mutex<()> = std::sync::Mutex::new(());
+        let _guard = NAMING.lock();
+        let name = free_name(&stamp, |n| Path::new(n).exists());
+        match crate::export::write_png(Path::new(&name), &img) {
+            Ok(()) => tracing::info!("saved screenshot {name}"),
+            Err(e) => tracing::error!("screenshot not saved: {e}"),
+        }
+    });
+}
+
+/// `newtons-cradle-STAMP.png`, or with `-2`, `-3`, .. when `taken` says the name
+/// is in use: an existing file is never replaced.
+#[must_use]
+pub fn free_name(stamp: &str, taken: impl Fn(&str) -> bool) -> String {
+    let base = format!("newtons-cradle-{stamp}");
+    let mut name = format!("{base}.png");
+    let mut k = 2u64;
+    while taken(&name) {
+        name = format!("{base}-{k}.png");
+        k += 1;
     }
+    name
 }
 
 /// `YYYYMMDD-HHMMSS` in UTC for `secs` seconds since 1970-01-01.
@@ -45,7 +66,24 @@ pub fn utc_stamp(secs: u64) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::utc_stamp;
+    use super::{free_name, utc_stamp};
+
+    #[test]
+    fn screenshots_in_one_second_get_names_of_their_own() {
+        let taken = [
+            "newtons-cradle-20261130-120000.png",
+            "newtons-cradle-20261130-120000-2.png",
+        ];
+        let pick = |stamp: &str| free_name(stamp, |n| taken.contains(&n));
+        assert_eq!(
+            pick("20261130-120001"),
+            "newtons-cradle-20261130-120001.png"
+        );
+        assert_eq!(
+            pick("20261130-120000"),
+            "newtons-cradle-20261130-120000-3.png"
+        );
+    }
 
     #[test]
     fn stamps_known_instants() {

@@ -298,15 +298,13 @@ impl Session {
             };
             let c = &self.config;
             lines.push((format!("Newton's cradle   {state}"), color));
-            lines.push((
-                format!(
-                    "fps {:5.1}   trace {:6.1} ms   t {:8.2} s",
-                    self.fps,
-                    self.trace_ms,
-                    self.time()
-                ),
-                white,
-            ));
+            // While paused nothing is traced: say so rather than show old rates.
+            let timing = if self.running() {
+                format!("fps {:5.1}   trace {:6.1} ms", self.fps, self.trace_ms)
+            } else {
+                "fps     -   trace      - ms".to_owned()
+            };
+            lines.push((format!("{timing}   t {:8.2} s", self.time()), white));
             lines.push((
                 format!(
                     "balls {}  lifted {}  contact {}  energy err {err:+.1e}",
