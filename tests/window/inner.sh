@@ -59,6 +59,9 @@ xdotool windowfocus "$wid" 2>/dev/null; xdotool key s; sleep 1
 shotfile=$(ls "$work"/newtons-cradle-*.png 2>/dev/null | head -n 1)
 [ -n "$shotfile" ] && [ "$(identify -format %w "$shotfile")" = "480" ] && grep -q "saved screenshot" "$work/app.log" \
   && ok "S saves a screenshot at the framebuffer size" || bad "S saves a screenshot"
+xdotool key s s s; sleep 1.5
+[ "$(ls "$work"/newtons-cradle-*.png 2>/dev/null | wc -l)" -ge 4 ] \
+  && ok "three quick S presses give three more files" || bad "three quick S presses give three more files"
 
 xdotool key Escape
 code=""
