@@ -15,7 +15,7 @@ use super::WindowError;
 use super::hud::Canvas;
 use super::session::HudLine;
 use crate::trace::Image;
-use pixels::{Pixels, SurfaceTexture};
+use pixels::{Pixels, ScalingMode, SurfaceTexture};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 use winit::dpi::PhysicalSize;
@@ -54,12 +54,15 @@ impl Surface {
         let size = window.inner_size();
         // SurfaceTexture::new asserts a non-zero size.
         let (sw, sh) = (size.width.max(1), size.height.max(1));
-        let pixels = Pixels::new(
+        let mut pixels = Pixels::new(
             width,
             height,
             SurfaceTexture::new(sw, sh, Arc::clone(&window)),
         )
         .map_err(|e| WindowError::NoAdapter(e.to_string()))?;
+        // Scale to fit the window, up or down, keeping the aspect (the default,
+        // pixel-perfect, crops a smaller window and borders a larger one).
+        pixels.set_scaling_mode(ScalingMode::Fill);
         tracing::info!(
             "window {sw}x{sh}, framebuffer {width}x{height}, format {:?}",
             pixels.render_texture_format()
