@@ -13,7 +13,13 @@ pub enum Output {
     /// One PNG at the start time.
     Png(PathBuf),
     /// `frames` PNGs `frame_0000.png`.. in a folder.
-    Sequence { dir: PathBuf, frames: u32, fps: f64 },
+    /// `frames` PNGs `frame_KKKK.png`.. in a folder, from frame `first` on.
+    Sequence {
+        dir: PathBuf,
+        first: u32,
+        frames: u32,
+        fps: f64,
+    },
     /// An animated GIF of `frames` frames.
     Gif {
         path: PathBuf,
@@ -32,8 +38,8 @@ impl Output {
         match self {
             Self::Png(p) => export::check_output(p, Kind::Png, input),
             Self::Gif { path, .. } => export::check_output(path, Kind::Gif, input),
-            Self::Sequence { dir, .. } => {
-                export::check_output(&frame_path(dir, 0), Kind::Png, input)
+            Self::Sequence { dir, first, .. } => {
+                export::check_output(&frame_path(dir, *first), Kind::Png, input)
             }
         }
     }
@@ -71,9 +77,15 @@ pub fn render(
             export::write_png(path, &pool.install(|| trace::render(world.scene())))?;
             written.push(path.clone());
         }
-        Output::Sequence { dir, frames, fps } => {
+        Output::Sequence {
+            dir,
+            first,
+            frames,
+            fps,
+        } => {
             let progress = crate::bench::progress_bar(u64::from(*frames), "frames");
-            for n in 0..*frames {
+            // Frame n at time start + n / fps, whichever process renders it.
+            for n in *first..*first + *frames {
                 let path = frame_path(dir, n);
                 // Each frame, as the first was before tracing: never over a file
                 // that is not a PNG, nor over the config.
@@ -137,8 +149,13 @@ pub fn is_bad_path(e: &anyhow::Error) -> bool {
 pub fn describe(output: &Output) -> String {
     match output {
         Output::Png(p) => format!("{}", p.display()),
-        Output::Sequence { dir, frames, fps } => format!(
-            "{frames} frames at {fps} fps in {}",
+        Output::Sequence {
+            dir,
+            first,
+            frames,
+            fps,
+        } => format!(
+            "{frames} frames from frame {first} at {fps} fps in {}",
             Path::new(dir).display()
         ),
         Output::Gif { path, frames, fps } => {

@@ -77,6 +77,10 @@ pub struct RenderArgs {
     /// Write an animated GIF here instead.
     #[arg(long, value_name = "FILE.gif")]
     pub gif: Option<PathBuf>,
+    /// With --frames and --out DIR/: render frames K..K+N-1 (files numbered from
+    /// K), so that a long sequence splits across processes, 0..=10000000.
+    #[arg(value_parser = whole("0..=10000000"), long, allow_negative_numbers = true, value_name = "K")]
+    pub first: Option<i64>,
 }
 
 /// What to measure.

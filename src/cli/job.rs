@@ -279,8 +279,17 @@ fn render_output(a: &RenderArgs) -> Result<crate::headless::Output, InputError> 
             Some(flag_value("--frames", n, (1..=100_000).contains(&n), "1..=100000")? as u32)
         }
     };
+    let first = match a.first {
+        None => 0,
+        Some(k) => flag_value("--first", k, (0..=10_000_000).contains(&k), "0..=10000000")? as u32,
+    };
+    if a.first.is_some() && (frames.is_none() || a.gif.is_some()) {
+        return Err(InputError::Flag(
+            "--first K: allowed with --frames N --out DIR/ (a PNG sequence) only".into(),
+        ));
+    }
     // Every frame's time is capped, not just the first one's.
-    let last = a.time + f64::from(frames.unwrap_or(1).saturating_sub(1)) / a.fps;
+    let last = a.time + f64::from(first + frames.unwrap_or(1).saturating_sub(1)) / a.fps;
     if last > 1e6 {
         return Err(InputError::Flag(format!(
             "--time {} with --frames {} at --fps {} ends at {} s; allowed: every frame at most 1e6 s",
@@ -301,6 +310,7 @@ fn render_output(a: &RenderArgs) -> Result<crate::headless::Output, InputError> 
         }),
         (Some(dir), None, Some(frames)) => Ok(Output::Sequence {
             dir: dir.clone(),
+            first,
             frames,
             fps: a.fps,
         }),
