@@ -17,6 +17,10 @@ pub enum Action {
     ToggleHud,
     /// S: save a screenshot.
     Screenshot,
+    /// `,` / `.`: half / twice the time rate (1/16x..=4x).
+    Rate(i32),
+    /// N: one frame (1/60 s of simulated time, at the rate) while paused.
+    Step,
     /// Escape: quit.
     Quit,
 }
@@ -36,6 +40,9 @@ pub fn action(key: &Key) -> Option<Action> {
             "r" => Some(Action::Reset),
             "h" => Some(Action::ToggleHud),
             "s" => Some(Action::Screenshot),
+            "," => Some(Action::Rate(-1)),
+            "." => Some(Action::Rate(1)),
+            "n" => Some(Action::Step),
             " " => Some(Action::TogglePause),
             _ => None,
         },
@@ -44,13 +51,15 @@ pub fn action(key: &Key) -> Option<Action> {
 }
 
 /// The help lines the HUD shows.
-pub const HELP: [&str; 7] = [
+pub const HELP: [&str; 9] = [
     "SPACE  start / stop the swing",
     "R      reset to the asset's start",
     "LEFT / RIGHT  fewer / more lifted balls",
     "DOWN / UP     fewer / more balls",
     "H or F1  help / no HUD / status",
     "S      save a screenshot (PNG)",
+    ", / .  half / twice the time rate",
+    "N      one frame while paused",
     "ESC    quit",
 ];
 
@@ -92,6 +101,9 @@ mod tests {
         assert_eq!(action(&Key::Named(NamedKey::F1)), Some(Action::ToggleHud));
         assert_eq!(action(&ch("s")), Some(Action::Screenshot));
         assert_eq!(action(&Key::Named(NamedKey::Escape)), Some(Action::Quit));
+        assert_eq!(action(&ch(",")), Some(Action::Rate(-1)));
+        assert_eq!(action(&ch(".")), Some(Action::Rate(1)));
+        assert_eq!(action(&ch("n")), Some(Action::Step));
         assert_eq!(action(&ch("x")), None);
         assert_eq!(action(&Key::Named(NamedKey::Tab)), None);
     }

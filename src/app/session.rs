@@ -46,6 +46,15 @@ pub enum Effect {
     Quit,
 }
 
+/// A rate as the HUD shows it: `1x`, `4x`, `1/16x`.
+fn rate_text(rate: f64) -> String {
+    if rate >= 1.0 {
+        format!("{rate}x")
+    } else {
+        format!("1/{}x", (1.0 / rate).round())
+    }
+}
+
 /// The most pixels the window traces per frame (4K): beyond it a frame takes
 /// seconds and the window stops answering keys. `render` takes any size.
 pub const MAX_WINDOW_PIXELS: u32 = 3840 * 2160;
@@ -94,7 +103,15 @@ pub struct Session {
     trace_ms: f64,
     hud: HudMode,
     error: Option<String>,
+    /// Simulated seconds per wall-clock second: a power of two, 1/16..=4.
+    rate: f64,
 }
+
+/// The time rates `,` and `.` step through: 1/16x ..= 4x, by powers of two.
+pub const RATES: std::ops::RangeInclusive<i32> = -4..=2;
+
+/// Simulated time one `N` press advances (s, before the rate): one frame at 60 Hz.
+pub const STEP: f64 = 1.0 / 60.0;
 
 impl Session {
     /// A session showing `config`, which came from `source` with `overrides`.
@@ -121,7 +138,14 @@ impl Session {
             trace_ms: 0.0,
             hud: HudMode::Status,
             error: None,
+            rate: 1.0,
         })
+    }
+
+    /// Simulated seconds per wall-clock second.
+    #[must_use]
+    pub fn rate(&self) -> f64 {
+        self.rate
     }
 
     /// The config shown now (the asset with the user's changes).
@@ -171,6 +195,17 @@ impl Session {
                 }
             }
             Action::ToggleHud => self.hud = self.hud.next(),
+            Action::Rate(d) => {
+                let e = (self.rate.log2().round() as i32 + d).clamp(*RATES.start(), *RATES.end());
+                self.rate = 2f64.powi(e);
+            }
+            Action::Step => {
+                if !self.running() {
+                    // Queried at the new time, as any frame: exact at any rate.
+                    self.world.show_at(self.time() + STEP * self.rate);
+                    self.retrace = true;
+                }
+            }
             Action::Screenshot => return Effect::Screenshot,
             Action::Quit => return Effect::Quit,
         }
@@ -247,7 +282,9 @@ impl Session {
             let dt = self
                 .last_frame
                 .map_or(0.0, |t| (now - t).as_secs_f64().min(MAX_FRAME_DT));
-            self.world.frame(if running { dt } else { 0.0 });
+            // Slow or fast motion: the clock runs at the rate, and the physics is
+            // queried at the clock's time, exact as ever.
+            self.world.frame(if running { dt * self.rate } else { 0.0 });
             let start = Instant::now();
             let (pool, renderer, world) = (&self.pool, &mut self.renderer, &self.world);
             pool.install(|| {
@@ -304,7 +341,14 @@ impl Session {
             } else {
                 "fps     -   trace      - ms".to_owned()
             };
-            lines.push((format!("{timing}   t {:8.2} s", self.time()), white));
+            lines.push((
+                format!(
+                    "{timing}   t {:8.2} s   rate {}",
+                    self.time(),
+                    rate_text(self.rate)
+                ),
+                white,
+            ));
             lines.push((
                 format!(
                     "balls {}  lifted {}  contact {}  energy err {err:+.1e}",

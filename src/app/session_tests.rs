@@ -184,3 +184,42 @@ fn the_window_traces_at_most_4k_pixels_keeping_the_shape() {
     super::fit_window(&mut small);
     assert_eq!(small, Config::default(), "sizes within the cap are kept");
 }
+
+#[test]
+fn time_rates_halve_and_double_within_bounds_and_scale_the_clock() {
+    let mut s = session();
+    for _ in 0..10 {
+        s.act(Action::Rate(-1));
+    }
+    assert_eq!(s.rate(), 1.0 / 16.0, "no slower than 1/16x");
+    for _ in 0..10 {
+        s.act(Action::Rate(1));
+    }
+    assert_eq!(s.rate(), 4.0, "no faster than 4x");
+    s.act(Action::Rate(-1));
+    s.act(Action::Rate(-1));
+    s.act(Action::Rate(-1));
+    assert_eq!(s.rate(), 0.5);
+    s.act(Action::TogglePause);
+    let now = Instant::now();
+    s.step(now);
+    frames(&mut s, now, 60);
+    // 60 frames of 1/60 s at half speed: half a second of simulated time (each
+    // frame's Duration is rounded to whole nanoseconds).
+    assert!((s.time() - 0.5).abs() < 1e-7, "t = {}", s.time());
+}
+
+#[test]
+fn n_advances_one_frame_at_the_rate_only_while_paused() {
+    let mut s = session();
+    s.step(Instant::now());
+    s.act(Action::Rate(-1));
+    s.act(Action::Step);
+    s.act(Action::Step);
+    // Two frames of 1/60 s at 1/2x; the physics is queried at that time.
+    assert_eq!(s.time(), 2.0 * super::STEP * 0.5);
+    s.act(Action::TogglePause);
+    let t = s.time();
+    s.act(Action::Step);
+    assert_eq!(s.time(), t, "while running, the clock is the clock");
+}
