@@ -3,6 +3,7 @@
 //! decides when the loop sleeps: while paused it waits for an event, using no CPU.
 
 use super::UserEvent;
+use super::mouse::Mouse;
 use super::session::{Effect, Session};
 use super::surface::Surface;
 use super::{keys, screenshot};
@@ -15,6 +16,7 @@ use winit::window::WindowId;
 pub struct App {
     session: Session,
     surface: Option<Surface>,
+    mouse: Mouse,
     /// Why the loop was ended early, returned by `run`.
     pub failure: Option<anyhow::Error>,
 }
@@ -25,6 +27,7 @@ impl App {
         Self {
             session,
             surface: None,
+            mouse: Mouse::default(),
             failure: None,
         }
     }
@@ -98,6 +101,19 @@ impl ApplicationHandler<UserEvent> for App {
                     }
                     Effect::Quit => event_loop.exit(),
                 }
+                surface.request_redraw();
+            }
+            WindowEvent::ModifiersChanged(m) => self.mouse.shift(m.state().shift_key()),
+            WindowEvent::MouseInput { button, state, .. } => self.mouse.button(button, state),
+            WindowEvent::CursorLeft { .. } => self.mouse.left(),
+            WindowEvent::CursorMoved { position, .. } => {
+                if let Some(change) = self.mouse.moved(position.x, position.y) {
+                    self.session.view(change);
+                    surface.request_redraw();
+                }
+            }
+            WindowEvent::MouseWheel { delta, .. } => {
+                self.session.view(Mouse::wheel(delta));
                 surface.request_redraw();
             }
             WindowEvent::RedrawRequested => {

@@ -21,6 +21,8 @@ pub enum Action {
     Rate(i32),
     /// N: one frame (1/60 s of simulated time, at the rate) while paused.
     Step,
+    /// C: back to the asset's view.
+    HomeView,
     /// Escape: quit.
     Quit,
 }
@@ -43,6 +45,7 @@ pub fn action(key: &Key) -> Option<Action> {
             "," => Some(Action::Rate(-1)),
             "." => Some(Action::Rate(1)),
             "n" => Some(Action::Step),
+            "c" => Some(Action::HomeView),
             " " => Some(Action::TogglePause),
             _ => None,
         },
@@ -51,7 +54,7 @@ pub fn action(key: &Key) -> Option<Action> {
 }
 
 /// The help lines the HUD shows.
-pub const HELP: [&str; 9] = [
+pub const HELP: [&str; 11] = [
     "SPACE  start / stop the swing",
     "R      reset to the asset's start",
     "LEFT / RIGHT  fewer / more lifted balls",
@@ -60,6 +63,8 @@ pub const HELP: [&str; 9] = [
     "S      save a screenshot (PNG)",
     ", / .  half / twice the time rate",
     "N      one frame while paused",
+    "mouse  right-drag turn, wheel zoom, middle-drag pan",
+    "C      back to the asset's view",
     "ESC    quit",
 ];
 
@@ -104,6 +109,7 @@ mod tests {
         assert_eq!(action(&ch(",")), Some(Action::Rate(-1)));
         assert_eq!(action(&ch(".")), Some(Action::Rate(1)));
         assert_eq!(action(&ch("n")), Some(Action::Step));
+        assert_eq!(action(&ch("c")), Some(Action::HomeView));
         assert_eq!(action(&ch("x")), None);
         assert_eq!(action(&Key::Named(NamedKey::Tab)), None);
     }

@@ -6,7 +6,8 @@
 //! - `surface`: the window and the pixels framebuffer: resize, occlusion, present
 //!   with the HUD ([`hud`]) drawn over the picture.
 //! - `handler`: winit's event handler between the two.
-//! - `keys`, `reload`, `screenshot`: the key map, the config watcher, S's PNGs.
+//! - `keys`, `mouse`, `orbit`: the key map, drags and wheel, the user's view.
+//! - `reload`, `screenshot`: the config watcher, S's PNGs.
 //!
 //! The window, pixels and event loop stay out of the World, the physics and the
 //! tracer.
@@ -14,6 +15,8 @@
 mod handler;
 pub mod hud;
 pub mod keys;
+pub mod mouse;
+pub mod orbit;
 mod reload;
 pub mod screenshot;
 pub mod session;
@@ -76,6 +79,31 @@ pub fn run(config: Config, source: ConfigSource, overrides: Common) -> anyhow::R
     let mut app = handler::App::new(session::Session::new(config, source, overrides)?);
     event_loop.run_app(&mut app)?;
     app.failure.map_or(Ok(()), Err)
+}
+
+/// The most pixels the window traces per frame (4K): beyond it a frame takes
+/// seconds and the window stops answering keys. `render` takes any size.
+pub const MAX_WINDOW_PIXELS: u32 = 3840 * 2160;
+
+/// Shrinks the picture size of `config`, keeping its shape, to at most
+/// [`MAX_WINDOW_PIXELS`]; the log says so when it does.
+pub fn fit_window(config: &mut Config) {
+    let r = &mut config.render;
+    let pixels = f64::from(r.width) * f64::from(r.height);
+    if pixels <= f64::from(MAX_WINDOW_PIXELS) {
+        return;
+    }
+    let k = (f64::from(MAX_WINDOW_PIXELS) / pixels).sqrt();
+    let (w, h) = (
+        ((f64::from(r.width) * k) as u32).max(16),
+        ((f64::from(r.height) * k) as u32).max(16),
+    );
+    tracing::warn!(
+        "the window traces {w}x{h}, not {}x{}: at most 3840x2160 pixels keep it answering; `newtons-cradle render` takes any size",
+        r.width,
+        r.height
+    );
+    (r.width, r.height) = (w, h);
 }
 
 /// winit's errors start with the source file they came from; users need the rest.

@@ -3,7 +3,10 @@
 //! redraws; it steps the ECS world and the incremental tracer. Nothing here knows
 //! of winit or pixels, so its rules are unit-tested without a display.
 
+use super::fit_window;
 use super::keys::{self, Action};
+use super::mouse::ViewChange;
+use super::orbit::Orbit;
 use crate::cli::{Common, InputError};
 use crate::config::{Config, ConfigSource, MAX_BALLS};
 use crate::scene::CradleWorld;
@@ -55,31 +58,6 @@ fn rate_text(rate: f64) -> String {
     }
 }
 
-/// The most pixels the window traces per frame (4K): beyond it a frame takes
-/// seconds and the window stops answering keys. `render` takes any size.
-pub const MAX_WINDOW_PIXELS: u32 = 3840 * 2160;
-
-/// Shrinks the picture size of `config`, keeping its shape, to at most
-/// [`MAX_WINDOW_PIXELS`]; the log says so when it does.
-pub fn fit_window(config: &mut Config) {
-    let r = &mut config.render;
-    let pixels = f64::from(r.width) * f64::from(r.height);
-    if pixels <= f64::from(MAX_WINDOW_PIXELS) {
-        return;
-    }
-    let k = (f64::from(MAX_WINDOW_PIXELS) / pixels).sqrt();
-    let (w, h) = (
-        ((f64::from(r.width) * k) as u32).max(16),
-        ((f64::from(r.height) * k) as u32).max(16),
-    );
-    tracing::warn!(
-        "the window traces {w}x{h}, not {}x{}: at most 3840x2160 pixels keep it answering; `newtons-cradle render` takes any size",
-        r.width,
-        r.height
-    );
-    (r.width, r.height) = (w, h);
-}
-
 /// A line of HUD text and its colour.
 pub type HudLine = (String, [u8; 3]);
 
@@ -105,6 +83,8 @@ pub struct Session {
     error: Option<String>,
     /// Simulated seconds per wall-clock second: a power of two, 1/16..=4.
     rate: f64,
+    /// The user's view, as offsets from the asset's camera.
+    orbit: Orbit,
 }
 
 /// The time rates `,` and `.` step through: 1/16x ..= 4x, by powers of two.
@@ -139,6 +119,7 @@ impl Session {
             hud: HudMode::Status,
             error: None,
             rate: 1.0,
+            orbit: Orbit::default(),
         })
     }
 
@@ -177,6 +158,7 @@ impl Session {
                 // Back to the asset's start: its ball and lift counts and run state.
                 self.config = self.asset.clone();
                 self.world.respawn(&self.config);
+                self.show_view();
                 self.restart_clock();
             }
             Action::Lift(d) => {
@@ -199,6 +181,10 @@ impl Session {
                 let e = (self.rate.log2().round() as i32 + d).clamp(*RATES.start(), *RATES.end());
                 self.rate = 2f64.powi(e);
             }
+            Action::HomeView => {
+                self.orbit = Orbit::default();
+                self.show_view();
+            }
             Action::Step => {
                 if !self.running() {
                     // Queried at the new time, as any frame: exact at any rate.
@@ -210,6 +196,22 @@ impl Session {
             Action::Quit => return Effect::Quit,
         }
         Effect::Redraw
+    }
+
+    /// Changes the view by `change` (a drag or the wheel) and shows it.
+    pub fn view(&mut self, change: ViewChange) {
+        match change {
+            ViewChange::Turn(dx, dy) => self.orbit.turn(dx, dy),
+            ViewChange::Pan(dx, dy) => self.orbit.pan(&self.config, dx, dy),
+            ViewChange::Zoom(steps) => self.orbit.zoom(steps),
+        }
+        self.show_view();
+    }
+
+    /// Puts the user's view into the world; the next frame is traced in full.
+    fn show_view(&mut self) {
+        self.world.set_camera(self.orbit.camera(&self.config));
+        self.retrace = true;
     }
 
     /// Hidden time does not count: the swing resumes where it stopped.
@@ -229,6 +231,7 @@ impl Session {
         let running = self.running();
         self.world.respawn(&self.config);
         self.world.set_running(running);
+        self.show_view();
         self.restart_clock();
     }
 

@@ -175,13 +175,13 @@ fn a_refused_framebuffer_keeps_the_scene() {
 fn the_window_traces_at_most_4k_pixels_keeping_the_shape() {
     let mut config = Config::default();
     (config.render.width, config.render.height) = (8192, 8192);
-    super::fit_window(&mut config);
+    crate::app::fit_window(&mut config);
     let (w, h) = (config.render.width, config.render.height);
-    assert!(w * h <= super::MAX_WINDOW_PIXELS, "{w}x{h}");
+    assert!(w * h <= crate::app::MAX_WINDOW_PIXELS, "{w}x{h}");
     assert_eq!(w, h, "square stays square");
     assert!(w > 2800, "{w}: no smaller than it must be");
     let mut small = Config::default();
-    super::fit_window(&mut small);
+    crate::app::fit_window(&mut small);
     assert_eq!(small, Config::default(), "sizes within the cap are kept");
 }
 

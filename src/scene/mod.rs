@@ -91,6 +91,12 @@ impl CradleWorld {
         spawn::respawn(&mut self.world, config);
     }
 
+    /// Looks through `camera` from the next frame on (the user's view; a respawn
+    /// returns to the asset's).
+    pub fn set_camera(&mut self, camera: crate::trace::Camera) {
+        self.world.resource_mut::<FlatScene>().0.camera = camera;
+    }
+
     /// The flat scene of the last frame.
     #[must_use]
     pub fn scene(&self) -> &crate::trace::Scene {

@@ -39,6 +39,16 @@ xdotool key space; sleep 1.5; shot pause1; sleep 1.0; shot pause2
 d=$(differ pause1 pause2)
 [ "$d" = "0" ] && ok "still while paused" || bad "still while paused ($d pixels changed)"
 
+# Paused, the picture only changes when the view does: the wheel, a right-drag.
+xdotool mousemove --window "$wid" 240 120 click 4 click 4; sleep 1.5; shot zoomed
+d=$(differ pause2 zoomed)
+[ "$d" != "0" ] && ok "the wheel zooms ($d pixels changed)" || bad "the wheel zooms"
+xdotool mousemove --window "$wid" 200 120 mousedown 3 mousemove --window "$wid" 260 110 \
+  mousemove --window "$wid" 300 100 mouseup 3; sleep 1.5; shot turned
+d=$(differ zoomed turned)
+[ "$d" != "0" ] && ok "a right-drag turns the view ($d pixels changed)" || bad "a right-drag turns the view"
+xdotool key c; sleep 1.5
+
 xdotool key space
 for i in $(seq 1 45); do xdotool windowsize "$wid" $((300 + (i * 37) % 700)) $((200 + (i * 53) % 500)); done
 sleep 2
