@@ -8,7 +8,7 @@ use super::session::{Effect, Session};
 use super::surface::Surface;
 use super::{keys, screenshot};
 use winit::application::ApplicationHandler;
-use winit::event::{ElementState, WindowEvent};
+use winit::event::{ElementState, MouseButton, WindowEvent};
 use winit::event_loop::{ActiveEventLoop, ControlFlow};
 use winit::window::WindowId;
 
@@ -104,9 +104,23 @@ impl ApplicationHandler<UserEvent> for App {
                 surface.request_redraw();
             }
             WindowEvent::ModifiersChanged(m) => self.mouse.shift(m.state().shift_key()),
-            WindowEvent::MouseInput { button, state, .. } => self.mouse.button(button, state),
+            WindowEvent::MouseInput { button, state, .. } => {
+                self.mouse.button(button, state);
+                if button == MouseButton::Left {
+                    match (state, self.mouse.at()) {
+                        (ElementState::Pressed, Some(at)) => {
+                            self.session.grab(surface.pixel(at));
+                        }
+                        (ElementState::Released, _) => self.session.release(),
+                        _ => {}
+                    }
+                    surface.request_redraw();
+                }
+            }
             WindowEvent::CursorLeft { .. } => self.mouse.left(),
             WindowEvent::CursorMoved { position, .. } => {
+                self.session
+                    .drag_to(surface.pixel((position.x, position.y)));
                 if let Some(change) = self.mouse.moved(position.x, position.y) {
                     self.session.view(change);
                     surface.request_redraw();

@@ -6,12 +6,14 @@
 //! - `surface`: the window and the pixels framebuffer: resize, occlusion, present
 //!   with the HUD ([`hud`]) drawn over the picture.
 //! - `handler`: winit's event handler between the two.
-//! - `keys`, `mouse`, `orbit`: the key map, drags and wheel, the user's view.
+//! - `keys`, `mouse`, `orbit`, `drag`: the key map, drags and wheel, the
+//!   user's view, dragging balls.
 //! - `reload`, `screenshot`: the config watcher, S's PNGs.
 //!
 //! The window, pixels and event loop stay out of the World, the physics and the
 //! tracer.
 
+pub mod drag;
 mod handler;
 pub mod hud;
 pub mod keys;

@@ -53,6 +53,12 @@ impl Mouse {
         }
     }
 
+    /// Where the cursor is (window pixels), if it is in the window.
+    #[must_use]
+    pub fn at(&self) -> Option<(f64, f64)> {
+        self.at
+    }
+
     /// The cursor left the window: the next move starts a new drag.
     pub fn left(&mut self) {
         self.at = None;

@@ -3,10 +3,10 @@
 //! redraws; it steps the ECS world and the incremental tracer. Nothing here knows
 //! of winit or pixels, so its rules are unit-tested without a display.
 
-use super::fit_window;
 use super::keys::{self, Action};
 use super::mouse::ViewChange;
 use super::orbit::Orbit;
+use super::{drag, fit_window};
 use crate::cli::{Common, InputError};
 use crate::config::{Config, ConfigSource, MAX_BALLS};
 use crate::scene::CradleWorld;
@@ -85,6 +85,8 @@ pub struct Session {
     rate: f64,
     /// The user's view, as offsets from the asset's camera.
     orbit: Orbit,
+    /// The ball being dragged, if one is.
+    dragging: Option<usize>,
 }
 
 /// The time rates `,` and `.` step through: 1/16x ..= 4x, by powers of two.
@@ -120,6 +122,7 @@ impl Session {
             error: None,
             rate: 1.0,
             orbit: Orbit::default(),
+            dragging: None,
         })
     }
 
@@ -196,6 +199,44 @@ impl Session {
             Action::Quit => return Effect::Quit,
         }
         Effect::Redraw
+    }
+
+    /// A left press at picture pixel `at`: grabs the ball there, if any, and
+    /// holds the swing while it is dragged. True when a ball was grabbed.
+    pub fn grab(&mut self, at: (f64, f64)) -> bool {
+        let snap = &self.world.cradle().snapshot;
+        self.dragging = drag::pick(&self.config, &self.world.scene().camera, snap, at);
+        tracing::debug!("left press at picture pixel {at:?}: ball {:?}", self.dragging);
+        if self.dragging.is_some() {
+            self.world.set_running(false);
+            self.restart_clock();
+        }
+        self.dragging.is_some()
+    }
+
+    /// The cursor at picture pixel `at` while a ball is held: the ball (with
+    /// those between it and the end it is pulled to) hangs at the angle there,
+    /// and the physics restarts from that state, exactly.
+    /// True when a ball is held (the picture changes).
+    pub fn drag_to(&mut self, at: (f64, f64)) -> bool {
+        let Some(ball) = self.dragging else {
+            return false;
+        };
+        let camera = self.world.scene().camera;
+        tracing::debug!("ball {ball} dragged to picture pixel {at:?}");
+        if let Some((theta, lifted, angle)) = drag::dragged(&self.config, &camera, ball, at) {
+            self.world.start_from(&self.config, &theta, lifted, angle);
+            self.retrace = true;
+        }
+        true
+    }
+
+    /// The left button up: a held ball is let go, and the swing runs from there.
+    pub fn release(&mut self) {
+        if self.dragging.take().is_some() {
+            self.world.set_running(true);
+            self.restart_clock();
+        }
     }
 
     /// Changes the view by `change` (a drag or the wheel) and shows it.

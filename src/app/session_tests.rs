@@ -223,3 +223,40 @@ fn n_advances_one_frame_at_the_rate_only_while_paused() {
     s.act(Action::Step);
     assert_eq!(s.time(), t, "while running, the clock is the clock");
 }
+
+#[test]
+fn dragging_the_right_end_ball_lifts_it_and_letting_go_swings_it() {
+    use crate::scene::spawn::Layout;
+    use crate::trace::camera::CameraRays;
+    use glam::DVec3;
+    let mut s = session();
+    s.step(Instant::now());
+    let c = s.config().clone();
+    let (w, h) = (c.render.width, c.render.height);
+    let cam = s.world.scene().camera;
+    let rays = CameraRays::new(&cam, w, h);
+    let layout = Layout::new(&c);
+    let last = c.cradle.balls - 1;
+    let centre = layout.pivot(last) + DVec3::new(0.0, -c.cradle.length, 0.0);
+    let (x, y) = rays.project(centre.as_vec3()).expect("in view");
+    assert!(
+        s.grab((f64::from(x), f64::from(y))),
+        "the right-end ball is under the cursor"
+    );
+    let target = layout.pivot(last) + DVec3::new(0.08, -0.12, 0.0);
+    let (x, y) = rays.project(target.as_vec3()).expect("in view");
+    assert!(s.drag_to((f64::from(x), f64::from(y))));
+    let theta = s.world.cradle().snapshot.theta.clone();
+    assert!(theta[last] > 0.3, "lifted to the right: {theta:?}");
+    // The asset lifts ball 0: the drag's state replaces it.
+    assert!(theta[..last].iter().all(|&t| t == 0.0), "{theta:?}");
+    assert!(!s.running(), "held while dragged");
+    s.release();
+    assert!(s.running(), "let go, it swings");
+    let now = frames(&mut s, Instant::now(), 12);
+    frames(&mut s, now, 12);
+    assert!(
+        s.world.cradle().snapshot.theta[last] < theta[last],
+        "it swings down"
+    );
+}

@@ -117,6 +117,16 @@ impl Surface {
             .map_err(|e| e.to_string())
     }
 
+    /// The picture pixel under window position `(x, y)` (beyond the picture's
+    /// edges when the window is, for drags that leave it).
+    #[must_use]
+    pub fn pixel(&self, (x, y): (f64, f64)) -> (f64, f64) {
+        match self.pixels.window_pos_to_pixel((x as f32, y as f32)) {
+            Ok((px, py)) => (px as f64, py as f64),
+            Err((px, py)) => (px as f64, py as f64),
+        }
+    }
+
     /// The framebuffer as last presented (the picture with the HUD).
     #[must_use]
     pub fn frame(&self) -> &[u8] {

@@ -11,7 +11,7 @@ mod validate;
 
 pub use load::{ConfigError, ConfigSource, DEFAULT_ASSET, load_file, parse};
 pub use look::{CameraConfig, LightConfig, MaterialConfig, MaterialsConfig, RenderConfig};
-pub use validate::FieldError;
+pub use validate::{FieldError, MAX_ANGLE_DEG};
 
 use crate::physics::{CradleParams, Integrator};
 use serde::{Deserialize, Serialize};

@@ -91,6 +91,26 @@ impl CradleWorld {
         spawn::respawn(&mut self.world, config);
     }
 
+    /// Restarts the cradle of `config` from angles `theta` (rad), at rest, at
+    /// t = 0: the physics exactly from that state. The box the moving objects stay
+    /// in follows the new energy (`lifted` balls at `angle`, the state's bound).
+    pub fn start_from(&mut self, config: &Config, theta: &[f64], lifted: usize, angle: f64) {
+        let mut cradle = crate::physics::Cradle::from_state(
+            config.cradle_params(),
+            config.physics.integrator,
+            config.physics.dt,
+            theta,
+            &vec![0.0; theta.len()],
+        );
+        let snapshot = cradle.snapshot(0.0);
+        self.world.insert_resource(CradleState { cradle, snapshot });
+        let mut bound = config.clone();
+        bound.start.lift = lifted;
+        bound.start.angle_deg = angle.to_degrees();
+        self.world.resource_mut::<FlatScene>().0.motion_bounds = Some(view::motion_bounds(&bound));
+        self.show_at(0.0);
+    }
+
     /// Looks through `camera` from the next frame on (the user's view; a respawn
     /// returns to the asset's).
     pub fn set_camera(&mut self, camera: crate::trace::Camera) {
