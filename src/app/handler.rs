@@ -73,6 +73,14 @@ impl ApplicationHandler<UserEvent> for App {
         let Some(surface) = &mut self.surface else {
             return;
         };
+        // The panel sees events first; what it takes (a click on a slider, typing
+        // in a field) is not ours, but Tab always toggles it.
+        let tab = matches!(&event, WindowEvent::KeyboardInput { event: k, .. }
+            if k.logical_key == winit::keyboard::Key::Named(winit::keyboard::NamedKey::Tab));
+        if self.session.panel_open() && surface.panel_event(&event) && !tab {
+            surface.request_redraw();
+            return;
+        }
         match event {
             WindowEvent::CloseRequested => event_loop.exit(),
             WindowEvent::Resized(size) => surface.resized(size),
@@ -134,8 +142,12 @@ impl ApplicationHandler<UserEvent> for App {
                 if surface.visible() {
                     self.session.step(std::time::Instant::now());
                 }
+                let panel = self.session.panel_open();
+                if panel {
+                    surface.prepare_panel(&mut self.session);
+                }
                 let lines = self.session.hud_lines();
-                if let Err(e) = surface.present(self.session.image(), &lines) {
+                if let Err(e) = surface.present(self.session.image(), &lines, panel) {
                     self.fail(event_loop, e);
                 }
             }

@@ -23,6 +23,8 @@ pub enum Action {
     Step,
     /// C: back to the asset's view.
     HomeView,
+    /// Tab: the control panel on or off.
+    Panel,
     /// Escape: quit.
     Quit,
 }
@@ -37,6 +39,7 @@ pub fn action(key: &Key) -> Option<Action> {
         Key::Named(NamedKey::ArrowDown) => Some(Action::Balls(-1)),
         Key::Named(NamedKey::ArrowUp) => Some(Action::Balls(1)),
         Key::Named(NamedKey::F1) => Some(Action::ToggleHud),
+        Key::Named(NamedKey::Tab) => Some(Action::Panel),
         Key::Named(NamedKey::Escape) => Some(Action::Quit),
         Key::Character(c) => match c.to_lowercase().as_str() {
             "r" => Some(Action::Reset),
@@ -54,7 +57,7 @@ pub fn action(key: &Key) -> Option<Action> {
 }
 
 /// The help lines the HUD shows.
-pub const HELP: [&str; 11] = [
+pub const HELP: [&str; 12] = [
     "SPACE  start / stop the swing",
     "R      reset to the asset's start",
     "LEFT / RIGHT  fewer / more lifted balls",
@@ -65,6 +68,7 @@ pub const HELP: [&str; 11] = [
     "N      one frame while paused",
     "mouse  right-drag turn, wheel zoom, middle-drag pan",
     "C      back to the asset's view",
+    "TAB    the control panel",
     "ESC    quit",
 ];
 
@@ -111,6 +115,6 @@ mod tests {
         assert_eq!(action(&ch("n")), Some(Action::Step));
         assert_eq!(action(&ch("c")), Some(Action::HomeView));
         assert_eq!(action(&ch("x")), None);
-        assert_eq!(action(&Key::Named(NamedKey::Tab)), None);
+        assert_eq!(action(&Key::Named(NamedKey::Tab)), Some(Action::Panel));
     }
 }

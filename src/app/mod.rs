@@ -5,6 +5,8 @@
 //!   (input -> physics -> extract) and traces the flat scene incrementally.
 //! - `surface`: the window and the pixels framebuffer: resize, occlusion, present
 //!   with the HUD ([`hud`]) drawn over the picture.
+//! - `panel` (Tab): the egui control panel over the picture, editing the
+//!   session's `controls`.
 //! - `handler`: winit's event handler between the two.
 //! - `keys`, `mouse`, `orbit`, `drag`: the key map, drags and wheel, the
 //!   user's view, dragging balls.
@@ -13,12 +15,14 @@
 //! The window, pixels and event loop stay out of the World, the physics and the
 //! tracer.
 
+pub mod controls;
 pub mod drag;
 mod handler;
 pub mod hud;
 pub mod keys;
 pub mod mouse;
 pub mod orbit;
+mod panel;
 mod reload;
 pub mod screenshot;
 pub mod session;

@@ -3,6 +3,7 @@
 //! redraws; it steps the ECS world and the incremental tracer. Nothing here knows
 //! of winit or pixels, so its rules are unit-tested without a display.
 
+use super::controls::{Apply, Controls};
 use super::keys::{self, Action};
 use super::mouse::ViewChange;
 use super::orbit::Orbit;
@@ -87,6 +88,8 @@ pub struct Session {
     orbit: Orbit,
     /// The ball being dragged, if one is.
     dragging: Option<usize>,
+    /// The control panel is shown.
+    panel: bool,
 }
 
 /// The time rates `,` and `.` step through: 1/16x ..= 4x, by powers of two.
@@ -123,6 +126,7 @@ impl Session {
             rate: 1.0,
             orbit: Orbit::default(),
             dragging: None,
+            panel: false,
         })
     }
 
@@ -184,6 +188,7 @@ impl Session {
                 let e = (self.rate.log2().round() as i32 + d).clamp(*RATES.start(), *RATES.end());
                 self.rate = 2f64.powi(e);
             }
+            Action::Panel => self.panel = !self.panel,
             Action::HomeView => {
                 self.orbit = Orbit::default();
                 self.show_view();
@@ -206,7 +211,10 @@ impl Session {
     pub fn grab(&mut self, at: (f64, f64)) -> bool {
         let snap = &self.world.cradle().snapshot;
         self.dragging = drag::pick(&self.config, &self.world.scene().camera, snap, at);
-        tracing::debug!("left press at picture pixel {at:?}: ball {:?}", self.dragging);
+        tracing::debug!(
+            "left press at picture pixel {at:?}: ball {:?}",
+            self.dragging
+        );
         if self.dragging.is_some() {
             self.world.set_running(false);
             self.restart_clock();
@@ -237,6 +245,63 @@ impl Session {
             self.world.set_running(true);
             self.restart_clock();
         }
+    }
+
+    /// Whether the control panel is shown.
+    #[must_use]
+    pub fn panel_open(&self) -> bool {
+        self.panel
+    }
+
+    /// The control panel's settings now.
+    #[must_use]
+    pub fn controls(&self) -> Controls {
+        Controls::of(&self.config, self.rate.log2().round() as i32)
+    }
+
+    /// Applies the control panel's settings ([`Controls::apply_to`]); a refused
+    /// edit is shown in the HUD and changes nothing.
+    pub fn apply_controls(&mut self, controls: &Controls) {
+        self.rate = 2f64.powi(controls.rate_exp.clamp(*RATES.start(), *RATES.end()));
+        match controls.apply_to(&self.config) {
+            Ok(Apply::Same) => {}
+            Ok(Apply::Live(c)) => {
+                let r = &c.render;
+                let adaptive = r.adaptive.then_some(r.adaptive_threshold as f32);
+                self.world.set_quality(r.samples, adaptive);
+                self.config = c;
+                self.retrace = true;
+                self.error = None;
+            }
+            Ok(Apply::Restart(c)) => {
+                self.config = c;
+                self.error = None;
+                self.respawn();
+            }
+            Err(e) => self.error = Some(e),
+        }
+    }
+
+    /// Each ball's share of the starting energy, and the total's relative error.
+    #[must_use]
+    pub fn energies(&self) -> (Vec<f64>, f64) {
+        let cradle = self.world.cradle();
+        let p = self.config.cradle_params();
+        let e0 = cradle.cradle.initial_energy();
+        let s = &cradle.snapshot;
+        let shares = s
+            .theta
+            .iter()
+            .zip(&s.omega)
+            .map(|(&t, &w)| {
+                if e0 > 0.0 {
+                    p.ball_energy(t, w) / e0
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        (shares, cradle.cradle.energy_rel_error(s))
     }
 
     /// Changes the view by `change` (a drag or the wheel) and shows it.

@@ -13,7 +13,8 @@
 
 use super::WindowError;
 use super::hud::Canvas;
-use super::session::HudLine;
+use super::panel::Panel;
+use super::session::{HudLine, Session};
 use crate::trace::Image;
 use pixels::{Pixels, ScalingMode, SurfaceTexture};
 use std::sync::Arc;
@@ -29,6 +30,8 @@ const RESIZE_SETTLE: Duration = Duration::from_millis(150);
 pub struct Surface {
     window: Arc<Window>,
     pixels: Pixels<'static>,
+    /// The control panel's egui state, made when it is first opened.
+    panel: Option<Panel>,
     /// The size the surface was last configured at.
     size: (u32, u32),
     /// Minimised or hidden: nothing to draw.
@@ -71,6 +74,7 @@ impl Surface {
         Ok(Self {
             window,
             pixels,
+            panel: None,
             size: (sw, sh),
             occluded: false,
             resizing: None,
@@ -98,6 +102,9 @@ impl Surface {
 
     /// The window changed size: follow it, and hold presenting until it settles.
     pub fn resized(&mut self, size: PhysicalSize<u32>) {
+        if let Some(p) = &mut self.panel {
+            p.resize(size.width, size.height);
+        }
         if size.width > 0 && size.height > 0 {
             match self.pixels.resize_surface(size.width, size.height) {
                 Ok(()) => self.size = (size.width, size.height),
@@ -127,6 +134,23 @@ impl Surface {
         }
     }
 
+    /// Feeds an event to the control panel; true when it took it.
+    pub fn panel_event(&mut self, event: &winit::event::WindowEvent) -> bool {
+        self.panel
+            .as_mut()
+            .is_some_and(|p| p.event(&self.window, event))
+    }
+
+    /// Runs the control panel's frame over `session` (before `present`); asks
+    /// for another frame when egui wants one.
+    pub fn prepare_panel(&mut self, session: &mut Session) {
+        let (window, pixels) = (&self.window, &self.pixels);
+        let panel = self.panel.get_or_insert_with(|| Panel::new(window, pixels));
+        if panel.prepare(window, session) {
+            self.window.request_redraw();
+        }
+    }
+
     /// The framebuffer as last presented (the picture with the HUD).
     #[must_use]
     pub fn frame(&self) -> &[u8] {
@@ -145,11 +169,17 @@ impl Surface {
         None
     }
 
-    /// Shows `image` with `lines` of HUD over it, unless hidden or resizing.
+    /// Shows `image` with `lines` of HUD over it, and the control panel when
+    /// `panel` (prepared just before), unless hidden or resizing.
     ///
     /// # Errors
     /// Presenting failed for a reason other than a size change.
-    pub fn present(&mut self, image: Option<&Image>, lines: &[HudLine]) -> anyhow::Result<()> {
+    pub fn present(
+        &mut self,
+        image: Option<&Image>,
+        lines: &[HudLine],
+        panel: bool,
+    ) -> anyhow::Result<()> {
         // Re-check the size right before rendering (see the module docs).
         let size = self.window.inner_size();
         if size.width == 0 || size.height == 0 || self.occluded || self.resizing.is_some() {
@@ -176,7 +206,15 @@ impl Surface {
                 canvas.panel(0, lines);
             }
         }
-        match self.pixels.render() {
+        let ui = &mut self.panel;
+        let drawn = self.pixels.render_with(|encoder, target, context| {
+            context.scaling_renderer.render(encoder, target);
+            if let (true, Some(ui)) = (panel, ui.as_mut()) {
+                ui.render(encoder, target, context);
+            }
+            Ok(())
+        });
+        match drawn {
             Ok(()) => Ok(()),
             Err(pixels::Error::SurfaceOutdated) => {
                 // The window changed size during the render: wait for it to settle,

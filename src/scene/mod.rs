@@ -111,6 +111,14 @@ impl CradleWorld {
         self.show_at(0.0);
     }
 
+    /// Traces with `samples` per pixel (adaptive at `adaptive`) from the next frame
+    /// on: a change the running swing absorbs.
+    pub fn set_quality(&mut self, samples: u32, adaptive: Option<f32>) {
+        let mut flat = self.world.resource_mut::<FlatScene>();
+        flat.0.samples = samples;
+        flat.0.adaptive = adaptive;
+    }
+
     /// Looks through `camera` from the next frame on (the user's view; a respawn
     /// returns to the asset's).
     pub fn set_camera(&mut self, camera: crate::trace::Camera) {

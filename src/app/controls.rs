@@ -1,0 +1,122 @@
+//! What the control panel edits, window-free: the settings it shows, and the
+//! rule for applying them. Changes the running swing can absorb (anti-aliasing,
+//! the time rate) apply live; the others restart from the start position, as the
+//! keys do. An edit the config's validation refuses is shown, not applied.
+
+use crate::config::{Config, ContactModel};
+use crate::physics::Integrator;
+
+/// The panel's settings.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Controls {
+    /// Balls, 1..=200.
+    pub balls: usize,
+    /// Balls lifted from the left.
+    pub lift: usize,
+    /// Lift angle (degrees).
+    pub angle_deg: f64,
+    /// Gap between balls at rest (m).
+    pub gap: f64,
+    /// Coefficient of restitution.
+    pub restitution: f64,
+    /// Contact model.
+    pub contact: ContactModel,
+    /// Solver.
+    pub integrator: Integrator,
+    /// Samples per pixel.
+    pub samples: u32,
+    /// Adaptive anti-aliasing.
+    pub adaptive: bool,
+    /// Time rate as a power of two.
+    pub rate_exp: i32,
+}
+
+/// How an edit applies.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Apply {
+    /// Nothing changed.
+    Same,
+    /// Only what the running swing absorbs changed.
+    Live(Config),
+    /// The cradle changed: respawn from the start position.
+    Restart(Config),
+}
+
+impl Controls {
+    /// The settings of `config` at time rate `2^rate_exp`.
+    #[must_use]
+    pub fn of(config: &Config, rate_exp: i32) -> Self {
+        Self {
+            balls: config.cradle.balls,
+            lift: config.start.lift,
+            angle_deg: config.start.angle_deg,
+            gap: config.cradle.gap,
+            restitution: config.contact.restitution,
+            contact: config.contact.model,
+            integrator: config.physics.integrator,
+            samples: config.render.samples,
+            adaptive: config.render.adaptive,
+            rate_exp,
+        }
+    }
+
+    /// How these settings apply to `config`.
+    ///
+    /// # Errors
+    /// The config's validation refuses them: its messages, one per line.
+    pub fn apply_to(&self, config: &Config) -> Result<Apply, String> {
+        let mut c = config.clone();
+        c.cradle.balls = self.balls;
+        c.start.lift = self.lift.min(self.balls);
+        c.start.angle_deg = self.angle_deg;
+        c.cradle.gap = self.gap;
+        c.contact.restitution = self.restitution;
+        c.contact.model = self.contact;
+        c.physics.integrator = self.integrator;
+        c.render.samples = self.samples;
+        c.render.adaptive = self.adaptive;
+        c.validate().map_err(|errors| {
+            errors
+                .iter()
+                .map(ToString::to_string)
+                .collect::<Vec<_>>()
+                .join("\n")
+        })?;
+        let mut swing = config.clone();
+        swing.render.samples = c.render.samples;
+        swing.render.adaptive = c.render.adaptive;
+        Ok(if c == *config {
+            Apply::Same
+        } else if c == swing {
+            Apply::Live(c)
+        } else {
+            Apply::Restart(c)
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{Apply, Controls};
+    use crate::config::{Config, ContactModel};
+
+    #[test]
+    fn quality_applies_live_the_cradle_restarts_and_bad_edits_are_refused() {
+        let c = Config::default();
+        let same = Controls::of(&c, 0);
+        assert_eq!(same.apply_to(&c), Ok(Apply::Same));
+        let mut aa = same.clone();
+        aa.samples = 16;
+        aa.adaptive = true;
+        assert!(matches!(aa.apply_to(&c), Ok(Apply::Live(n)) if n.render.samples == 16));
+        let mut more = same.clone();
+        more.balls = 7;
+        assert!(matches!(more.apply_to(&c), Ok(Apply::Restart(n)) if n.cradle.balls == 7));
+        // Hertz contact is elastic: with restitution 0.5 it is refused, with its range.
+        let mut bad = same;
+        bad.contact = ContactModel::Hertz;
+        bad.restitution = 0.5;
+        let e = bad.apply_to(&c).expect_err("refused");
+        assert!(e.contains("contact.restitution"), "{e}");
+    }
+}
