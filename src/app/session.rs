@@ -3,11 +3,10 @@
 //! redraws; it steps the ECS world and the incremental tracer. Nothing here knows
 //! of winit or pixels, so its rules are unit-tested without a display.
 
-use super::controls::{Apply, Controls};
-use super::keys::{self, Action};
+use super::fit_window;
+use super::keys::Action;
 use super::mouse::ViewChange;
 use super::orbit::Orbit;
-use super::{drag, fit_window};
 use crate::cli::{Common, InputError};
 use crate::config::{Config, ConfigSource, MAX_BALLS};
 use crate::scene::CradleWorld;
@@ -48,15 +47,6 @@ pub enum Effect {
     Screenshot,
     /// Close the window.
     Quit,
-}
-
-/// A rate as the HUD shows it: `1x`, `4x`, `1/16x`.
-fn rate_text(rate: f64) -> String {
-    if rate >= 1.0 {
-        format!("{rate}x")
-    } else {
-        format!("1/{}x", (1.0 / rate).round())
-    }
 }
 
 /// A line of HUD text and its colour.
@@ -206,104 +196,6 @@ impl Session {
         Effect::Redraw
     }
 
-    /// A left press at picture pixel `at`: grabs the ball there, if any, and
-    /// holds the swing while it is dragged. True when a ball was grabbed.
-    pub fn grab(&mut self, at: (f64, f64)) -> bool {
-        let snap = &self.world.cradle().snapshot;
-        self.dragging = drag::pick(&self.config, &self.world.scene().camera, snap, at);
-        tracing::debug!(
-            "left press at picture pixel {at:?}: ball {:?}",
-            self.dragging
-        );
-        if self.dragging.is_some() {
-            self.world.set_running(false);
-            self.restart_clock();
-        }
-        self.dragging.is_some()
-    }
-
-    /// The cursor at picture pixel `at` while a ball is held: the ball (with
-    /// those between it and the end it is pulled to) hangs at the angle there,
-    /// and the physics restarts from that state, exactly.
-    /// True when a ball is held (the picture changes).
-    pub fn drag_to(&mut self, at: (f64, f64)) -> bool {
-        let Some(ball) = self.dragging else {
-            return false;
-        };
-        let camera = self.world.scene().camera;
-        tracing::debug!("ball {ball} dragged to picture pixel {at:?}");
-        if let Some((theta, lifted, angle)) = drag::dragged(&self.config, &camera, ball, at) {
-            self.world.start_from(&self.config, &theta, lifted, angle);
-            self.retrace = true;
-        }
-        true
-    }
-
-    /// The left button up: a held ball is let go, and the swing runs from there.
-    pub fn release(&mut self) {
-        if self.dragging.take().is_some() {
-            self.world.set_running(true);
-            self.restart_clock();
-        }
-    }
-
-    /// Whether the control panel is shown.
-    #[must_use]
-    pub fn panel_open(&self) -> bool {
-        self.panel
-    }
-
-    /// The control panel's settings now.
-    #[must_use]
-    pub fn controls(&self) -> Controls {
-        Controls::of(&self.config, self.rate.log2().round() as i32)
-    }
-
-    /// Applies the control panel's settings ([`Controls::apply_to`]); a refused
-    /// edit is shown in the HUD and changes nothing.
-    pub fn apply_controls(&mut self, controls: &Controls) {
-        self.rate = 2f64.powi(controls.rate_exp.clamp(*RATES.start(), *RATES.end()));
-        match controls.apply_to(&self.config) {
-            Ok(Apply::Same) => {}
-            Ok(Apply::Live(c)) => {
-                let r = &c.render;
-                let adaptive = r.adaptive.then_some(r.adaptive_threshold as f32);
-                self.world.set_quality(r.samples, adaptive);
-                self.config = c;
-                self.retrace = true;
-                self.error = None;
-            }
-            Ok(Apply::Restart(c)) => {
-                self.config = c;
-                self.error = None;
-                self.respawn();
-            }
-            Err(e) => self.error = Some(e),
-        }
-    }
-
-    /// Each ball's share of the starting energy, and the total's relative error.
-    #[must_use]
-    pub fn energies(&self) -> (Vec<f64>, f64) {
-        let cradle = self.world.cradle();
-        let p = self.config.cradle_params();
-        let e0 = cradle.cradle.initial_energy();
-        let s = &cradle.snapshot;
-        let shares = s
-            .theta
-            .iter()
-            .zip(&s.omega)
-            .map(|(&t, &w)| {
-                if e0 > 0.0 {
-                    p.ball_energy(t, w) / e0
-                } else {
-                    0.0
-                }
-            })
-            .collect();
-        (shares, cradle.cradle.energy_rel_error(s))
-    }
-
     /// Changes the view by `change` (a drag or the wheel) and shows it.
     pub fn view(&mut self, change: ViewChange) {
         match change {
@@ -428,60 +320,11 @@ impl Session {
     pub fn time(&self) -> f64 {
         self.world.cradle().snapshot.t
     }
-
-    /// The HUD's lines for its mode (none when off), plus any config error.
-    #[must_use]
-    pub fn hud_lines(&self) -> Vec<HudLine> {
-        let mut lines = Vec::new();
-        if self.hud != HudMode::Off {
-            let white = [235, 235, 235];
-            let cradle = self.world.cradle();
-            let err = cradle.cradle.energy_rel_error(&cradle.snapshot);
-            let (state, color) = if self.running() {
-                ("RUNNING", [140, 230, 140])
-            } else {
-                ("PAUSED - press SPACE", [250, 210, 110])
-            };
-            let c = &self.config;
-            lines.push((format!("Newton's cradle   {state}"), color));
-            // While paused nothing is traced: say so rather than show old rates.
-            let timing = if self.running() {
-                format!("fps {:5.1}   trace {:6.1} ms", self.fps, self.trace_ms)
-            } else {
-                "fps     -   trace      - ms".to_owned()
-            };
-            lines.push((
-                format!(
-                    "{timing}   t {:8.2} s   rate {}",
-                    self.time(),
-                    rate_text(self.rate)
-                ),
-                white,
-            ));
-            lines.push((
-                format!(
-                    "balls {}  lifted {}  contact {}  energy err {err:+.1e}",
-                    c.cradle.balls,
-                    c.start.lift,
-                    c.contact.model.name()
-                ),
-                white,
-            ));
-            let grey = [180, 190, 200];
-            if self.hud == HudMode::Help {
-                lines.extend(keys::HELP.iter().map(|l| ((*l).to_string(), grey)));
-            } else {
-                lines.push(("H: help".to_string(), grey));
-            }
-        }
-        if let Some(e) = &self.error {
-            for line in format!("config error: {e}").lines() {
-                lines.push((line.to_string(), [255, 110, 100]));
-            }
-        }
-        lines
-    }
 }
+
+mod dragging;
+mod editing;
+mod status;
 
 #[cfg(test)]
 #[path = "session_tests.rs"]

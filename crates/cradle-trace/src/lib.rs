@@ -15,6 +15,7 @@
 
 pub mod bvh;
 pub mod camera;
+mod casters;
 pub mod color;
 pub mod geometry;
 pub mod incremental;

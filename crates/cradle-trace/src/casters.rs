@@ -1,0 +1,140 @@
+//! Shadow-ray casters of the bounded objects: for each object, light and piece
+//! of its length, the objects that can lie between it and the light. A shadow
+//! ray from an object tests only those ([`Prepared::occluded_towards`]), instead
+//! of walking the hierarchy: the answer is a yes/no, so any superset of the
+//! blockers in any order gives the same bits.
+//!
+//! [`Prepared::occluded_towards`]: super::prepared::Prepared::occluded_towards
+
+use super::bvh::Bvh;
+use super::geometry::Aabb;
+use super::prepared::bounds;
+use super::scene::{Light, Shape};
+use glam::Vec3;
+
+/// The bounded objects (in query order) that can block a shadow ray towards
+/// `light` from a point of the object with box `from`.
+///
+/// Such a ray starts within `from` (lifted 2e-5 m off its surface) and runs to
+/// the light (or, for a directional light, away along it), so every point of it is
+/// within the box's half-diagonal, plus margins for the lift and for rounding,
+/// of the segment from the box's centre to the light. An object can only block it
+/// if its box, widened by that much, meets that segment. Ambient light casts no
+/// shadow rays: no list.
+///
+/// With a hierarchy over `bounded` (`bvh`, items its positions), only the objects
+/// in the nodes near the segment are tested: many objects then cost O(log n) each.
+fn casters(from: Aabb, light: &Light, bounded: &[(usize, Aabb)], bvh: Option<&Bvh>) -> Vec<usize> {
+    let centre = (from.min + from.max) * 0.5;
+    let (dir, t_max) = match *light {
+        Light::Ambient { .. } => return Vec::new(),
+        // t in 0..=1 along the segment to the light.
+        Light::Point { position, .. } => (position - centre, 1.0),
+        Light::Directional { direction, .. } => (-direction, f32::INFINITY),
+    };
+    let reach = if t_max.is_finite() { dir.length() } else { 0.0 };
+    let scale = centre.abs().max_element() + reach;
+    let widen = 0.5 * (from.max - from.min).length() + 1e-4 + 1e-4 * scale;
+    let inv = dir.recip();
+    let meets = |b: &Aabb| {
+        let t1 = (b.min - widen - centre) * inv;
+        let t2 = (b.max + widen - centre) * inv;
+        let near = t1.min(t2).max_element().max(0.0);
+        let far = t1.max(t2).min_element().min(t_max);
+        // NaN (an axis the segment runs along, at a slab's edge): keep it.
+        near <= far || near.is_nan() || far.is_nan()
+    };
+    match bvh {
+        Some(bvh) => {
+            let boxes: Vec<Aabb> = bounded.iter().map(|&(_, b)| b).collect();
+            let mut ks = Vec::new();
+            bvh.collect(meets, &boxes, &mut ks);
+            // Back to query order.
+            ks.sort_unstable();
+            ks.into_iter().map(|k| bounded[k].0).collect()
+        }
+        None => bounded
+            .iter()
+            .filter(|(_, b)| meets(b))
+            .map(|&(i, _)| i)
+            .collect(),
+    }
+}
+
+/// The casters of one object's shadow rays, per light, per piece of its length:
+/// a cylinder is cut along its axis into pieces about four radii long (at most
+/// 16), so that a shadow ray from a point of a long rod tests only what can lie
+/// between that part of the rod and the light. A sphere is one piece.
+#[derive(Debug, Clone)]
+pub(crate) struct Casters {
+    /// Start of the axis, unit axis and length (m); pieces along it.
+    a: Vec3,
+    u: Vec3,
+    len: f32,
+    pieces: usize,
+    /// Per light, per piece: the objects (in query order) that can block.
+    lists: Vec<Vec<Vec<usize>>>,
+}
+
+impl Casters {
+    /// The casters of `shape` for each of `lights`; `None` for planes.
+    pub(crate) fn new(
+        shape: &Shape,
+        lights: &[Light],
+        bounded: &[(usize, Aabb)],
+        bvh: Option<&Bvh>,
+    ) -> Option<Self> {
+        let (a, b, radius) = match *shape {
+            Shape::Plane { .. } => return None,
+            Shape::Sphere { centre, radius } => (centre, centre, radius),
+            Shape::Cylinder { a, b, radius } => (a, b, radius),
+        };
+        let len = (b - a).length();
+        let pieces = if len > 0.0 {
+            ((len / (4.0 * radius)).ceil() as usize).clamp(1, 16)
+        } else {
+            1
+        };
+        let u = if len > 0.0 { (b - a) / len } else { Vec3::ZERO };
+        // Each piece's box holds its part of the shape, and overlaps its neighbours'
+        // by a margin far beyond the rounding of the piece lookup (and beyond the
+        // 2e-5 m that shadow rays start off the caps).
+        let margin = 1e-4 + 1e-4 * len;
+        let piece_box = |k: usize| -> Aabb {
+            if pieces == 1 {
+                return bounds(shape).expect("spheres and cylinders are bounded");
+            }
+            let step = len / pieces as f32;
+            let (s0, s1) = (k as f32 * step - margin, (k + 1) as f32 * step + margin);
+            bounds(&Shape::Cylinder {
+                a: a + u * s0,
+                b: a + u * s1,
+                radius: radius + margin,
+            })
+            .expect("cylinders are bounded")
+        };
+        let boxes: Vec<Aabb> = (0..pieces).map(piece_box).collect();
+        Some(Self {
+            a,
+            u,
+            len,
+            pieces,
+            lists: lights
+                .iter()
+                .map(|l| boxes.iter().map(|&b| casters(b, l, bounded, bvh)).collect())
+                .collect(),
+        })
+    }
+
+    /// The casters towards light `light` of a shadow ray starting at `at`.
+    pub(crate) fn at(&self, light: usize, at: Vec3) -> Option<&[usize]> {
+        let piece = if self.pieces == 1 {
+            0
+        } else {
+            let s = (at - self.a).dot(self.u) / self.len * self.pieces as f32;
+            // Clamped to the ends (the caps' starts lie just beyond them); NaN to 0.
+            (s.max(0.0) as usize).min(self.pieces - 1)
+        };
+        Some(self.lists.get(light)?[piece].as_slice())
+    }
+}
