@@ -76,32 +76,27 @@ impl Tiles {
     #[must_use]
     pub fn new(p: &Prepared<'_>, cam: &CameraRays, width: u32, height: u32) -> Self {
         let objects = p.in_query_order().collect::<Vec<_>>();
-        let mirrors = p
-            .scene
-            .objects
-            .iter()
-            .enumerate()
-            .filter_map(|(i, o)| match o.shape {
-                Shape::Plane { point, normal } => {
-                    let image = objects
-                        .iter()
-                        .map(|&(k, b)| (k, b.map(|b| mirrored(b, point, normal))));
-                    Some((i, lists(image, cam, width, height)))
-                }
-                _ => None,
+        // Each plane (object index, point, normal), for its mirror and shadow lists.
+        let planes = || {
+            p.scene
+                .objects
+                .iter()
+                .enumerate()
+                .filter_map(|(i, o)| match o.shape {
+                    Shape::Plane { point, normal } => Some((i, point, normal)),
+                    _ => None,
+                })
+        };
+        let mirrors = planes()
+            .map(|(i, point, normal)| {
+                let image = objects
+                    .iter()
+                    .map(|&(k, b)| (k, b.map(|b| mirrored(b, point, normal))));
+                (i, lists(image, cam, width, height))
             })
             .collect();
-        let clear = p
-            .scene
-            .objects
-            .iter()
-            .enumerate()
-            .filter_map(|(i, o)| match o.shape {
-                Shape::Plane { point, normal } => {
-                    Some((i, clear_lights(p, i, cam, (point, normal), width, height)))
-                }
-                _ => None,
-            })
+        let clear = planes()
+            .map(|(i, point, normal)| (i, clear_lights(p, i, cam, (point, normal), width, height)))
             .collect();
         let (lists, rects) = lists_and_rects(objects.into_iter(), cam, width, height);
         Self {
