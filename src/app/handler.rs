@@ -83,6 +83,13 @@ impl ApplicationHandler<UserEvent> for App {
         }
         match event {
             WindowEvent::CloseRequested => event_loop.exit(),
+            // Destroyed from outside (another client's XDestroyWindow): nothing
+            // left to draw on, so end as a close would, before touching it again.
+            WindowEvent::Destroyed => {
+                tracing::info!("the window was destroyed from outside; exiting");
+                self.surface = None;
+                event_loop.exit();
+            }
             WindowEvent::Resized(size) => surface.resized(size),
             WindowEvent::Occluded(hidden) => {
                 // Minimised on X11: no 0x0 resize, just this. Nothing to draw then.
@@ -127,10 +134,14 @@ impl ApplicationHandler<UserEvent> for App {
             }
             WindowEvent::CursorLeft { .. } => self.mouse.left(),
             WindowEvent::CursorMoved { position, .. } => {
-                self.session
+                let held = self
+                    .session
                     .drag_to(surface.pixel((position.x, position.y)));
-                if let Some(change) = self.mouse.moved(position.x, position.y) {
+                let change = self.mouse.moved(position.x, position.y);
+                if let Some(change) = change {
                     self.session.view(change);
+                }
+                if held || change.is_some() {
                     surface.request_redraw();
                 }
             }

@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
-# Drives the real window (needs DISPLAY, xdotool, ImageMagick): it draws a
-# non-blank picture, Space toggles motion, the wheel and drags change the view,
-# Tab shows the control panel, 45 rapid resizes do not hang it, a
-# saved config reloads and a bad one keeps the scene, S saves unique screenshots,
-# Escape exits 0.
+# Drives the real window (needs DISPLAY, xdotool, ImageMagick, python3): it
+# draws a non-blank picture, a left-drag lifts a ball and release swings it,
+# quick arrows keep it running, Space pauses, the wheel and drags change the
+# view, Tab shows the control panel, 45 rapid resizes do not hang it, a saved
+# config reloads and a bad one keeps the scene, S saves unique screenshots,
+# Escape exits 0, and a window destroyed from outside exits 0.
 set -uo pipefail
 bin="$1"
 work="$(mktemp -d)"
@@ -33,9 +34,22 @@ shot start
 colors=$(identify -format %k "$work/start.png")
 [ "$colors" -gt 200 ] && ok "draws a picture ($colors colours)" || bad "draws a picture ($colors colours)"
 
-xdotool key space; sleep 1.5; shot run1; sleep 1.0; shot run2
+# Left-drag the right-end ball (at this size and the asset's view it sits at
+# 292,135) out and up: it follows while held, and swings once let go.
+xdotool mousemove --window "$wid" 292 135; sleep 0.3; xdotool mousedown 1; sleep 0.3
+for x in 300 310 320 330 340 350 360; do xdotool mousemove --window "$wid" $x $((135 - (x - 292) / 2)); sleep 0.1; done
+sleep 1; shot held1; sleep 0.5; shot held2
+d1=$(differ start held1); d2=$(differ held1 held2)
+grep -q "picked ball 5" "$work/app.log" && [ "$d1" != "0" ] && [ "$d2" = "0" ] \
+  && ok "a left-drag lifts the right-end ball ($d1 pixels changed)" || bad "a left-drag lifts the right-end ball ($d1, $d2)"
+xdotool mouseup 1; sleep 1.0; shot run1; sleep 1.0; shot run2
 d=$(differ run1 run2)
-[ "$d" != "0" ] && ok "moves while running ($d pixels changed)" || bad "moves while running"
+[ "$d" != "0" ] && ok "let go, it swings ($d pixels changed)" || bad "let go, it swings"
+
+# Quick arrow presses restart the swing from the start, still running.
+xdotool key Up Down Right Left; sleep 1.0; shot run1; sleep 1.0; shot run2
+d=$(differ run1 run2)
+[ "$d" != "0" ] && ok "quick arrow presses keep it running ($d pixels changed)" || bad "quick arrow presses keep it running"
 
 xdotool key space; sleep 1.5; shot pause1; sleep 1.0; shot pause2
 d=$(differ pause1 pause2)
@@ -89,6 +103,24 @@ for _ in $(seq 1 50); do
 done
 [ "$code" = "0" ] && ok "Escape exits with 0" || bad "Escape exits with 0 (got '${code:-still running}')"
 grep -q "panicked" "$work/app.log" && bad "no panic in the log" || ok "no panic in the log"
+
+# Destroyed by another client (XDestroyWindow): exits cleanly, no panic.
+"$bin" --config "$(dirname "$bin")/../../assets/cradle.ron" --width 160 --height 80 > "$work/destroy.log" 2>&1 &
+pid=$!
+wid=""
+for _ in $(seq 1 150); do
+  wid=$(xdotool search --name "Newton's cradle" 2>/dev/null | head -n 1) && [ -n "$wid" ] && break
+  sleep 0.2
+done
+sleep 1; xdotool key --window "$wid" space; sleep 0.5
+[ -n "$wid" ] && python3 "$(dirname "$0")/destroy_window.py" "$wid"
+code=""
+for _ in $(seq 1 50); do
+  if ! kill -0 "$pid" 2>/dev/null; then wait "$pid"; code=$?; break; fi
+  sleep 0.1
+done
+[ "$code" = "0" ] && ! grep -q panicked "$work/destroy.log" \
+  && ok "destroyed from outside: exits 0" || { bad "destroyed from outside: exits 0 (got '${code:-still running}')"; cat "$work/destroy.log"; }
 
 # No usable adapter (Metal does not exist here): a plain message and exit 1.
 WGPU_BACKEND=metal timeout 20 "$bin" --width 64 --height 32 > "$work/noadapter.log" 2>&1

@@ -10,11 +10,8 @@ impl Session {
     pub fn grab(&mut self, at: (f64, f64)) -> bool {
         let snap = &self.world.cradle().snapshot;
         self.dragging = drag::pick(&self.config, &self.world.scene().camera, snap, at);
-        tracing::debug!(
-            "left press at picture pixel {at:?}: ball {:?}",
-            self.dragging
-        );
-        if self.dragging.is_some() {
+        if let Some(ball) = self.dragging {
+            tracing::info!("picked ball {} at picture pixel {at:?}", ball + 1);
             self.world.set_running(false);
             self.restart_clock();
         }
