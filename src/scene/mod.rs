@@ -4,6 +4,7 @@
 //! schedule of chained sets Input -> Physics -> Extract.
 
 pub mod components;
+pub mod long_row;
 pub mod spawn;
 pub mod systems;
 pub mod view;

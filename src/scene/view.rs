@@ -50,7 +50,8 @@ pub fn camera(cam: &CameraConfig) -> trace::Camera {
 /// The camera of `config`, with `camera.fit` moved back along its line of sight
 /// until every corner of the frame projects (by the tracer's projection) inside
 /// the middle 95% of the picture. A camera that sees the frame already, or looks
-/// straight down, is left as it is.
+/// straight down, is left as it is. A row too long to read that way is looked
+/// at along its length instead ([`super::long_row`]).
 #[must_use]
 pub fn fitted_camera(config: &Config) -> CameraConfig {
     let mut cam = config.camera.clone();
@@ -81,7 +82,7 @@ pub fn fitted_camera(config: &Config) -> CameraConfig {
             break;
         }
     }
-    cam
+    super::long_row::along_the_row(config, &cam).unwrap_or(cam)
 }
 
 /// A config light as the tracer's, its colour times its intensity.
