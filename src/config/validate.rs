@@ -275,9 +275,10 @@ impl Config {
         c.rgb("render.background", r.background);
 
         let cam = &self.camera;
-        // The tracer works in f32: hit points round to ulps of the eye's distance,
-        // and a 2 cm ball's normals with them (at 20 m, 1e-4 rad: banded, speckled
-        // reflections with a narrow field of view); within 10 m they stay clean.
+        // The tracer works in f32: hit points round to ulps of the eye's distance
+        // (1e-6 m at 10 m; the hit tests keep them that close to the surface), and
+        // a 2 cm ball's normals with them; within 10 m, a tenth of the 2e-5 m that
+        // secondary rays start off the surface, so no speckled self-shadowing.
         // An eye too near its target has no direction.
         c.vec3("camera.position", cam.position, 10.0);
         c.vec3("camera.look_at", cam.look_at, 10.0);
