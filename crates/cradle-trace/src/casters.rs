@@ -10,6 +10,7 @@ use super::bvh::Bvh;
 use super::geometry::Aabb;
 use super::prepared::bounds;
 use super::scene::{Light, Shape};
+use super::wide::WideBoxes;
 use glam::Vec3;
 
 /// The bounded objects (in query order) that can block a shadow ray towards
@@ -72,8 +73,9 @@ pub(crate) struct Casters {
     u: Vec3,
     len: f32,
     pieces: usize,
-    /// Per light, per piece: the objects (in query order) that can block.
-    lists: Vec<Vec<Vec<usize>>>,
+    /// Per light, per piece: the objects (in query order) that can block, with
+    /// their boxes eight at a time.
+    lists: Vec<Vec<WideBoxes>>,
 }
 
 impl Casters {
@@ -114,6 +116,12 @@ impl Casters {
             .expect("cylinders are bounded")
         };
         let boxes: Vec<Aabb> = (0..pieces).map(piece_box).collect();
+        let wide = |list: Vec<usize>| {
+            WideBoxes::new(list.into_iter().map(|i| {
+                let k = bounded.partition_point(|&(j, _)| j < i);
+                (i, bounded[k].1)
+            }))
+        };
         Some(Self {
             a,
             u,
@@ -121,13 +129,18 @@ impl Casters {
             pieces,
             lists: lights
                 .iter()
-                .map(|l| boxes.iter().map(|&b| casters(b, l, bounded, bvh)).collect())
+                .map(|l| {
+                    boxes
+                        .iter()
+                        .map(|&b| wide(casters(b, l, bounded, bvh)))
+                        .collect()
+                })
                 .collect(),
         })
     }
 
     /// The casters towards light `light` of a shadow ray starting at `at`.
-    pub(crate) fn at(&self, light: usize, at: Vec3) -> Option<&[usize]> {
+    pub(crate) fn at(&self, light: usize, at: Vec3) -> Option<&WideBoxes> {
         let piece = if self.pieces == 1 {
             0
         } else {
@@ -135,6 +148,6 @@ impl Casters {
             // Clamped to the ends (the caps' starts lie just beyond them); NaN to 0.
             (s.max(0.0) as usize).min(self.pieces - 1)
         };
-        Some(self.lists.get(light)?[piece].as_slice())
+        Some(&self.lists.get(light)?[piece])
     }
 }

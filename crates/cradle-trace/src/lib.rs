@@ -5,7 +5,8 @@
 //! Then, in data-flow order:
 //! - [`scene`]: the flat scene (shapes, materials, lights, camera) in f32;
 //! - [`prepared`], [`bvh`], [`tiles`], [`shadow`]: bounds and culling structures
-//!   built once per frame ([`Prepared`]);
+//!   built once per frame ([`Prepared`]); `wide` tests eight boxes at once, in
+//!   the AVX2 or the portable build (`simd`);
 //! - [`camera`], [`geometry`], [`shade`]: rays, hit tests and Whitted shading;
 //! - [`sampling`], [`render`]: sample offsets and the serial and parallel render
 //!   twins ([`render`], [`render_serial`]);
@@ -27,7 +28,9 @@ pub mod sampling;
 pub mod scene;
 pub mod shade;
 pub mod shadow;
+mod simd;
 pub mod tiles;
+mod wide;
 
 pub use color::{Image, srgb8};
 pub use incremental::Incremental;

@@ -27,22 +27,13 @@ use super::scene::{Material, Shape};
 use super::shade::SURFACE_OFFSET;
 use super::tiles::Tiles;
 use glam::Vec3;
-use std::sync::atomic::{AtomicBool, Ordering};
 
 /// Pixels per packet.
 pub const LANES: usize = 8;
 
 mod lanes;
 
-/// Set: packets take the portable build even where the CPU has AVX2.
-static PORTABLE: AtomicBool = AtomicBool::new(false);
-
-/// Makes packets use the portable (SSE2) build of the lane code even where the
-/// CPU has AVX2, or lets them choose again. Both give the same bytes; tests use
-/// this to check the build this machine would not otherwise run.
-pub fn force_portable(on: bool) {
-    PORTABLE.store(on, Ordering::Relaxed);
-}
+pub use super::simd::force_portable;
 
 type F8 = [f32; LANES];
 
@@ -125,7 +116,7 @@ impl Packet<'_, '_> {
     /// lane's ray misses it, for the scalar path to trace.
     pub(crate) fn floor(&self, floor: &Floor<'_>, x0: u32, y: u32, out: &mut [u8]) -> bool {
         #[cfg(target_arch = "x86_64")]
-        if !PORTABLE.load(Ordering::Relaxed) && std::arch::is_x86_feature_detected!("avx2") {
+        if super::simd::avx2() {
             // SAFETY: the CPU has AVX2, checked just above.
             #[expect(unsafe_code, reason = "the one run-time dispatch to the AVX2 build")]
             return unsafe { self.floor_avx2(floor, x0, y, out) };

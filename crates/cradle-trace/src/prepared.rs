@@ -7,6 +7,7 @@ use super::casters::Casters;
 use super::geometry::{Aabb, Cylinder, Ray, hit_plane, hit_sphere};
 use super::scene::{Scene, Shape};
 use super::shadow::Footprints;
+use super::wide::{WIDE_AT_MOST, WideBoxes};
 use glam::Vec3;
 use std::cell::Cell;
 
@@ -78,9 +79,11 @@ pub struct Prepared<'a> {
     casters: Option<Vec<Option<Casters>>>,
     /// Over `bounded`; built only when the hierarchy is turned on.
     bvh: Option<Bvh>,
-    bounded: Vec<(usize, Aabb)>,
-    group: Aabb,
-    planes: Vec<usize>,
+    /// `bounded`'s boxes eight at a time, for scans that skip nothing.
+    pub(crate) wide: WideBoxes,
+    pub(crate) bounded: Vec<(usize, Aabb)>,
+    pub(crate) group: Aabb,
+    pub(crate) planes: Vec<usize>,
 }
 
 impl<'a> Prepared<'a> {
@@ -115,6 +118,7 @@ impl<'a> Prepared<'a> {
             casters: None,
             bvh: None,
             geoms: scene.objects.iter().map(|o| Geom::new(&o.shape)).collect(),
+            wide: WideBoxes::new(bounded.iter().copied()),
             bounded,
             group,
             planes,
@@ -122,7 +126,7 @@ impl<'a> Prepared<'a> {
     }
 
     /// Distance and outward normal of the ray's hit on object `i`, if any.
-    fn hit_object(&self, i: usize, ray: &Ray) -> Option<(f32, Vec3)> {
+    pub(crate) fn hit_object(&self, i: usize, ray: &Ray) -> Option<(f32, Vec3)> {
         match self.geoms[i] {
             Geom::Sphere { centre, radius } => {
                 hit_sphere(ray, centre, radius).map(|t| (t, (ray.at(t) - centre) / radius))
@@ -173,7 +177,10 @@ impl<'a> Prepared<'a> {
     #[must_use]
     pub fn closest(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
         if let Some(bvh) = &self.bvh {
-            return self.closest_bvh(bvh, ray, t_max);
+            if self.bounded.len() > WIDE_AT_MOST {
+                return self.closest_bvh(bvh, ray, t_max);
+            }
+            return self.closest_wide(ray, t_max);
         }
         let mut best: Option<(f32, usize, Vec3)> = None;
         let consider = |i: usize, best: &mut Option<(f32, usize, Vec3)>| {
@@ -302,10 +309,12 @@ impl<'a> Prepared<'a> {
                 return true;
             }
             let inv = ray.dir.recip();
-            return list.iter().any(|&i| {
-                self.boxes[i].hit(ray, inv, t_max)
-                    && self.hit_object(i, ray).is_some_and(|(t, _)| t < t_max)
-            });
+            return list.scan(
+                ray,
+                inv,
+                || t_max,
+                |i, _, _| self.hit_object(i, ray).is_some_and(|(t, _)| t < t_max),
+            );
         }
         self.occluded_by(ray, t_max, self.footprints(from, light))
     }
@@ -350,6 +359,9 @@ impl<'a> Prepared<'a> {
             &self.bvh,
         ) {
             (Some((cell, always)), _) => cell.iter().chain(always).any(|&i| test(i)),
+            (None, Some(_)) if self.bounded.len() <= WIDE_AT_MOST => {
+                self.wide.scan(ray, inv, || t_max, |i, _, _| blocks(i))
+            }
             (None, Some(bvh)) => bvh.traverse(
                 ray,
                 inv,

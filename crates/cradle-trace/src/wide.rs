@@ -1,0 +1,304 @@
+//! Eight boxes at a time: the bounded objects' boxes stored as structure of
+//! arrays, so one ray meets eight of them in one pass of SIMD arithmetic. Each
+//! lane computes exactly what [`Aabb::hit`] computes (the same IEEE operations,
+//! `f32::min`/`max` for the slabs, no fused multiply-add), so the answer for
+//! every box is the scalar one: a scan in chunks takes the same boxes as the
+//! scan one box at a time.
+//!
+//! Used by the secondary-ray queries of [`Prepared`](super::prepared::Prepared)
+//! (nearest hit, shadow rays) in place of walking the hierarchy, which for a few
+//! dozen objects costs more in its node tests than the boxes it skips.
+
+#![expect(
+    clippy::inline_always,
+    reason = "the lane code is inlined into each entry point, so the AVX2 one compiles it for AVX2"
+)]
+
+use super::geometry::{Aabb, Ray, T_MIN};
+use super::prepared::{Hit, Prepared};
+use glam::Vec3;
+use std::cell::Cell;
+
+/// With the hierarchy on, scenes of at most this many bounded objects scan their
+/// boxes eight at a time instead of walking it.
+pub(crate) const WIDE_AT_MOST: usize = 64;
+
+const W: usize = 8;
+
+/// Up to eight boxes and the items they belong to.
+#[derive(Debug, Clone)]
+struct Chunk {
+    min: [[f32; W]; 3],
+    max: [[f32; W]; 3],
+    items: [u32; W],
+    /// Lanes in use: the bits of the first `len` lanes.
+    used: u8,
+}
+
+/// Boxes in chunks of eight, in the order given.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct WideBoxes {
+    chunks: Vec<Chunk>,
+}
+
+/// The lanes of one chunk the ray meets before `t_max`: bit `j` for lane `j`.
+/// Lane `j` is [`Aabb::hit`] of that box, operation for operation, NaN rules
+/// included: `t1 = (min - o) * inv`, `t2 = (max - o) * inv`; glam's `min` and
+/// `max` of vectors pick with `a < b ? a : b` and `a > b ? a : b` (the second
+/// operand when either is NaN), `max_element` is `max(x, max(y, z))`; the last
+/// `max(T_MIN)` and `min(t_max)` are `f32`'s, which skip a NaN.
+#[inline(always)]
+fn lanes(c: &Chunk, o: Vec3, inv: Vec3, t_max: f32) -> u8 {
+    let (o, inv) = (o.to_array(), inv.to_array());
+    let mn = |a: f32, b: f32| if a < b { a } else { b };
+    let mx = |a: f32, b: f32| if a > b { a } else { b };
+    let mut bits = 0u8;
+    for j in 0..W {
+        let t1: [f32; 3] = std::array::from_fn(|a| (c.min[a][j] - o[a]) * inv[a]);
+        let t2: [f32; 3] = std::array::from_fn(|a| (c.max[a][j] - o[a]) * inv[a]);
+        let lo: [f32; 3] = std::array::from_fn(|a| mn(t1[a], t2[a]));
+        let hi: [f32; 3] = std::array::from_fn(|a| mx(t1[a], t2[a]));
+        let near = mx(lo[0], mx(lo[1], lo[2])).max(T_MIN);
+        let far = mn(hi[0], mn(hi[1], hi[2])).min(t_max);
+        bits |= u8::from(near <= far) << j;
+    }
+    bits & c.used
+}
+
+/// [`lanes`] in AVX registers, written with the instructions themselves (the
+/// compiler's own vectorization of the loop shuffles more than it computes).
+/// `minps(a, b)` is `a < b ? a : b` and `maxps(a, b)` is `a > b ? a : b`, the
+/// second operand for a NaN, as glam picks; `f32::max(x, T_MIN)` is
+/// `maxps(x, T_MIN)` since `T_MIN` is never NaN, and `min(t_max)` likewise.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn lanes_avx2(c: &Chunk, o: Vec3, inv: Vec3, t_max: f32) -> u8 {
+    use std::arch::x86_64::{
+        _CMP_LE_OQ, _mm256_cmp_ps, _mm256_max_ps, _mm256_min_ps, _mm256_movemask_ps, _mm256_mul_ps,
+        _mm256_set1_ps, _mm256_sub_ps,
+    };
+    let (o, inv) = (o.to_array(), inv.to_array());
+    let t = |v: &[f32; W], a: usize| {
+        _mm256_mul_ps(
+            _mm256_sub_ps(load(v), _mm256_set1_ps(o[a])),
+            _mm256_set1_ps(inv[a]),
+        )
+    };
+    let (t1x, t2x) = (t(&c.min[0], 0), t(&c.max[0], 0));
+    let (t1y, t2y) = (t(&c.min[1], 1), t(&c.max[1], 1));
+    let (t1z, t2z) = (t(&c.min[2], 2), t(&c.max[2], 2));
+    let (lx, ly, lz) = (
+        _mm256_min_ps(t1x, t2x),
+        _mm256_min_ps(t1y, t2y),
+        _mm256_min_ps(t1z, t2z),
+    );
+    let (hx, hy, hz) = (
+        _mm256_max_ps(t1x, t2x),
+        _mm256_max_ps(t1y, t2y),
+        _mm256_max_ps(t1z, t2z),
+    );
+    let near = _mm256_max_ps(
+        _mm256_max_ps(lx, _mm256_max_ps(ly, lz)),
+        _mm256_set1_ps(T_MIN),
+    );
+    let far = _mm256_min_ps(
+        _mm256_min_ps(hx, _mm256_min_ps(hy, hz)),
+        _mm256_set1_ps(t_max),
+    );
+    let hit = _mm256_cmp_ps::<_CMP_LE_OQ>(near, far);
+    (_mm256_movemask_ps(hit) as u8) & c.used
+}
+
+/// The eight floats of `v` in an AVX register.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn load(v: &[f32; W]) -> std::arch::x86_64::__m256 {
+    // SAFETY: an unaligned load of exactly the eight floats `v` holds.
+    #[expect(unsafe_code, reason = "a load from a reference, in bounds by its type")]
+    unsafe {
+        std::arch::x86_64::_mm256_loadu_ps(v.as_ptr())
+    }
+}
+
+impl WideBoxes {
+    /// The boxes of `items` (item, box), in that order.
+    pub(crate) fn new(items: impl IntoIterator<Item = (usize, Aabb)>) -> Self {
+        let mut chunks: Vec<Chunk> = Vec::new();
+        for (n, (item, b)) in items.into_iter().enumerate() {
+            let j = n % W;
+            if j == 0 {
+                chunks.push(Chunk {
+                    min: [[0.0; W]; 3],
+                    max: [[0.0; W]; 3],
+                    items: [0; W],
+                    used: 0,
+                });
+            }
+            let c = chunks.last_mut().expect("pushed above");
+            for a in 0..3 {
+                c.min[a][j] = b.min[a];
+                c.max[a][j] = b.max[a];
+            }
+            c.items[j] = u32::try_from(item).expect("object indices fit in u32");
+            c.used |= 1 << j;
+        }
+        Self { chunks }
+    }
+
+    /// Calls `visit(item, box, t_max)` for every box, in order, that the ray
+    /// meets before `t_max`, which is `limit()` asked again at each chunk: a
+    /// `visit` whose limit fell within the chunk tests the box again with it.
+    /// Stops and returns true as soon as `visit` does.
+    #[inline]
+    pub(crate) fn scan(
+        &self,
+        ray: &Ray,
+        inv: Vec3,
+        limit: impl Fn() -> f32,
+        mut visit: impl FnMut(usize, &Aabb, f32) -> bool,
+    ) -> bool {
+        let wide = super::simd::avx2();
+        for c in &self.chunks {
+            let t_max = limit();
+            #[cfg(target_arch = "x86_64")]
+            // SAFETY: the CPU has AVX2 when `wide` is set (checked at run time).
+            #[expect(unsafe_code, reason = "the run-time dispatch to the AVX2 build")]
+            let mut bits = if wide {
+                unsafe { lanes_avx2(c, ray.origin, inv, t_max) }
+            } else {
+                lanes(c, ray.origin, inv, t_max)
+            };
+            #[cfg(not(target_arch = "x86_64"))]
+            let mut bits = {
+                let _ = wide;
+                lanes(c, ray.origin, inv, t_max)
+            };
+            while bits != 0 {
+                let j = bits.trailing_zeros() as usize;
+                bits &= bits - 1;
+                let b = Aabb {
+                    min: Vec3::new(c.min[0][j], c.min[1][j], c.min[2][j]),
+                    max: Vec3::new(c.max[0][j], c.max[1][j], c.max[2][j]),
+                };
+                if visit(c.items[j] as usize, &b, t_max) {
+                    return true;
+                }
+            }
+        }
+        false
+    }
+}
+
+impl Prepared<'_> {
+    /// The linear scan of [`Prepared::closest`] (the planes, then the bounded
+    /// objects in query order, each tested through its box with the nearest hit
+    /// so far as the limit), eight boxes at a time: the same boxes pass, so it
+    /// finds the same hit.
+    pub(crate) fn closest_wide(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
+        let best: Cell<Option<(f32, usize, Vec3)>> = Cell::new(None);
+        let limit = || best.get().map_or(t_max, |b| b.0);
+        let consider = |i: usize| {
+            if let Some((t, n)) = self.hit_object(i, ray)
+                && t < limit()
+            {
+                best.set(Some((t, i, n)));
+            }
+        };
+        for &i in &self.planes {
+            consider(i);
+        }
+        let inv = ray.dir.recip();
+        if self.group.hit(ray, inv, t_max) {
+            self.wide.scan(ray, inv, limit, |i, b, chunk| {
+                // A nearer hit found within this chunk: the box again, with it.
+                let now = limit();
+                if now >= chunk || b.hit(ray, inv, now) {
+                    consider(i);
+                }
+                false
+            });
+        }
+        best.get().map(|(t, object, n)| Hit {
+            t,
+            object,
+            normal: if n.dot(ray.dir) > 0.0 { -n } else { n },
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{Chunk, W, WideBoxes, lanes};
+    use crate::geometry::{Aabb, Ray};
+    use glam::Vec3;
+
+    /// Both builds of the eight-box test against `Aabb::hit`, box by box.
+    fn check(boxes: &[Aabb], ray: &Ray, t_max: f32) {
+        let inv = ray.dir.recip();
+        let wide = WideBoxes::new(boxes.iter().copied().enumerate());
+        for (k, c) in wide.chunks.iter().enumerate() {
+            let want = (0..W).fold(0u8, |bits, j| {
+                let i = k * W + j;
+                bits | (u8::from(i < boxes.len() && boxes[i].hit(ray, inv, t_max)) << j)
+            });
+            assert_eq!(lanes(c, ray.origin, inv, t_max), want, "portable, {ray:?}");
+            #[cfg(target_arch = "x86_64")]
+            if std::arch::is_x86_feature_detected!("avx2") {
+                // SAFETY: the CPU has AVX2, checked just above.
+                #[expect(unsafe_code, reason = "calling the AVX2 build under test")]
+                let got = unsafe { super::lanes_avx2(c, ray.origin, inv, t_max) };
+                assert_eq!(got, want, "AVX2, {ray:?}");
+            }
+        }
+        let _: &Chunk = &wide.chunks[0];
+    }
+
+    #[test]
+    fn eight_boxes_at_once_answer_as_each_box_alone() {
+        // Boxes around the origin, flat ones and one of zero size; rays from
+        // all around, along the axes (a zero direction component: infinite
+        // inverses, NaN slabs where the origin lies on a face), and grazing.
+        let mut boxes = Vec::new();
+        for i in 0..19 {
+            let c = Vec3::new(
+                i as f32 * 0.1 - 0.9,
+                (i % 3) as f32 * 0.2,
+                (i % 5) as f32 * -0.1,
+            );
+            let e = Vec3::new(0.05, 0.02 * (i % 4) as f32, 0.03);
+            boxes.push(Aabb {
+                min: c - e,
+                max: c + e,
+            });
+        }
+        let mut origins = vec![Vec3::new(0.0, 1.0, 2.0), Vec3::new(-2.0, 0.1, 0.0)];
+        origins.push(boxes[3].min);
+        origins.push(Vec3::new(boxes[5].max.x, 0.0, 0.0));
+        let mut seed = 1u32;
+        let mut rnd = || {
+            seed = seed.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+            (seed >> 8) as f32 / (1u32 << 24) as f32 * 2.0 - 1.0
+        };
+        for o in origins {
+            let mut dirs = vec![
+                Vec3::X,
+                -Vec3::X,
+                Vec3::Y,
+                Vec3::Z,
+                Vec3::new(1.0, 0.0, 1.0),
+            ];
+            for _ in 0..200 {
+                dirs.push(Vec3::new(rnd(), rnd(), rnd()));
+            }
+            for d in dirs {
+                let ray = Ray {
+                    origin: o,
+                    dir: d.normalize(),
+                };
+                for t_max in [f32::INFINITY, 1.0, 1e-6] {
+                    check(&boxes, &ray, t_max);
+                }
+            }
+        }
+    }
+}
