@@ -91,11 +91,12 @@ impl Cylinder {
         let o_perp = ao - u * ou;
         let qa = d_perp.length_squared();
         let qb = o_perp.dot(d_perp);
-        let mut best: Option<(f32, Vec3)> = None;
-        let mut take = |t: f32, n: Vec3| {
-            if t > T_MIN && best.is_none_or(|(bt, _)| t < bt) {
-                best = Some((t, n));
-            }
+        // The nearest root so far and where it lies (body, or the cap at a or
+        // b); the normal is worked out once, for the one kept.
+        const BODY: u8 = 0;
+        let mut best: Option<(f32, u8)> = None;
+        let nearer = |best: Option<(f32, u8)>, t: f32| {
+            t > T_MIN && best.is_none_or(|(bt, _)| t < bt)
         };
         // Body: |o_perp + t d_perp| = r, within the axial extent. A ray parallel to the
         // axis (qa ~ 0) can only meet the caps.
@@ -109,26 +110,32 @@ impl Cylinder {
             if disc < 0.0 {
                 return None;
             }
-            {
-                let s = disc.sqrt();
-                for t in [(-qb - s) / qa, (-qb + s) / qa] {
-                    let along = ou + t * du;
-                    if (0.0..=len).contains(&along) {
-                        take(t, (o_perp + d_perp * t).normalize());
-                    }
+            let s = disc.sqrt();
+            for t in [(-qb - s) / qa, (-qb + s) / qa] {
+                let along = ou + t * du;
+                if (0.0..=len).contains(&along) && nearer(best, t) {
+                    best = Some((t, BODY));
                 }
             }
         }
-        // Caps: the planes through a (facing -u) and b (facing +u), within the radius.
+        // Caps: the planes through a (facing -u) and b (facing +u), within the
+        // radius; a cap no nearer than the hit so far is not looked at.
         if du.abs() > 1e-12 {
-            for (end, normal, along) in [(a, -u, 0.0), (b, u, len)] {
+            for (part, end, along) in [(1, a, 0.0), (2, b, len)] {
                 let t = (along - ou) / du;
-                if (ray.at(t) - end).length_squared() <= radius * radius {
-                    take(t, normal);
+                if nearer(best, t) && (ray.at(t) - end).length_squared() <= radius * radius {
+                    best = Some((t, part));
                 }
             }
         }
-        best
+        best.map(|(t, part)| {
+            let normal = match part {
+                BODY => (o_perp + d_perp * t).normalize(),
+                1 => -u,
+                _ => u,
+            };
+            (t, normal)
+        })
     }
 }
 
