@@ -20,7 +20,7 @@
 )]
 
 use super::camera::CameraRays;
-use super::color::srgb8;
+use super::color::srgb8_lanes;
 use super::geometry::T_MIN;
 use super::prepared::Prepared;
 use super::scene::{Material, Shape};
@@ -121,7 +121,7 @@ impl Packet<'_, '_> {
             #[expect(unsafe_code, reason = "the one run-time dispatch to the AVX2 build")]
             return unsafe { self.floor_avx2(floor, x0, y, out) };
         }
-        self.floor_lanes(floor, x0, y, out)
+        self.floor_lanes::<false>(floor, x0, y, out)
     }
 
     /// [`Self::floor_lanes`] compiled for AVX2 (8 lanes in one register); no FMA,
@@ -129,11 +129,19 @@ impl Packet<'_, '_> {
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
     fn floor_avx2(&self, floor: &Floor<'_>, x0: u32, y: u32, out: &mut [u8]) -> bool {
-        self.floor_lanes(floor, x0, y, out)
+        self.floor_lanes::<true>(floor, x0, y, out)
     }
 
+    /// The packet's lanes; `AVX2`: compiled into the AVX2 build, which may use
+    /// its instructions directly (the sRGB gathers).
     #[inline(always)]
-    fn floor_lanes(&self, floor: &Floor<'_>, x0: u32, y: u32, out: &mut [u8]) -> bool {
+    fn floor_lanes<const AVX2: bool>(
+        &self,
+        floor: &Floor<'_>,
+        x0: u32,
+        y: u32,
+        out: &mut [u8],
+    ) -> bool {
         let c = self.cam;
         // CameraRays::ray(x + 0.5, y + 0.5).
         let sx = f8(|i| 2.0 * ((x0 + i as u32) as f32 + 0.5) / c.width - 1.0);
@@ -190,9 +198,19 @@ impl Packet<'_, '_> {
             z: f8(|i| point.z[i] + nv(i).z * SURFACE_OFFSET),
         };
         let color = self.shade_lanes(floor, (x0, y), &d, &point, &start, &nv);
+        let srgb = |c: F8| {
+            #[cfg(target_arch = "x86_64")]
+            if AVX2 {
+                // SAFETY: `AVX2` is set only in the AVX2 build, which runs only
+                // where the CPU has it.
+                #[expect(unsafe_code, reason = "the AVX2 build's sRGB gathers")]
+                return unsafe { super::color::srgb8_avx2(c) };
+            }
+            srgb8_lanes(c)
+        };
+        let (r, g, b) = (srgb(color.x), srgb(color.y), srgb(color.z));
         for (i, px) in out.chunks_exact_mut(4).enumerate() {
-            let c = color.lane(i);
-            px.copy_from_slice(&[srgb8(c.x), srgb8(c.y), srgb8(c.z), 255]);
+            px.copy_from_slice(&[r[i], g[i], b[i], 255]);
         }
         true
     }
