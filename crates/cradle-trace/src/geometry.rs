@@ -75,6 +75,11 @@ impl Cylinder {
         }
     }
 
+    /// Its ends `a` and `b`, unit axis, length and radius.
+    pub(crate) fn parts(&self) -> (Vec3, Vec3, Vec3, f32, f32) {
+        (self.a, self.b, self.u, self.len, self.radius)
+    }
+
     /// Nearest `t > T_MIN` and the outward normal where the ray meets it.
     #[must_use]
     pub fn hit(&self, ray: &Ray) -> Option<(f32, Vec3)> {

@@ -32,6 +32,7 @@ use glam::Vec3;
 pub const LANES: usize = 8;
 
 mod lanes;
+mod occlusion;
 
 pub use super::simd::force_portable;
 

@@ -45,7 +45,7 @@ pub(crate) fn bounds(shape: &Shape) -> Option<Aabb> {
 
 /// A shape with what its hit test needs worked out once per frame.
 #[derive(Debug, Clone, Copy)]
-enum Geom {
+pub(crate) enum Geom {
     Sphere { centre: Vec3, radius: f32 },
     Cylinder(Cylinder),
     Plane { point: Vec3, normal: Vec3 },
@@ -68,7 +68,7 @@ pub struct Prepared<'a> {
     pub scene: &'a Scene,
     geoms: Vec<Geom>,
     /// Per object: its box (planes: empty, never used).
-    boxes: Vec<Aabb>,
+    pub(crate) boxes: Vec<Aabb>,
     /// Per object: its slot in `footprints` if it is a plane.
     plane_slot: Vec<Option<usize>>,
     /// Per plane, per light: which objects can shadow which part of it; built
@@ -123,6 +123,11 @@ impl<'a> Prepared<'a> {
             group,
             planes,
         }
+    }
+
+    /// Object `i`'s shape with what its hit test needs.
+    pub(crate) fn geom(&self, i: usize) -> &Geom {
+        &self.geoms[i]
     }
 
     /// Distance and outward normal of the ray's hit on object `i`, if any.

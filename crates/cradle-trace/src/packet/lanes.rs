@@ -17,7 +17,7 @@ use super::{F8, Floor, LANES, Packet, V8, f8, lanes};
 use crate::geometry::{Ray, T_MIN};
 use crate::motion::Motion;
 use crate::scene::{Light, Shape};
-use crate::shade::{BAILOUT, blocked, floor_i64, reflect};
+use crate::shade::{BAILOUT, floor_i64, reflect};
 use crate::tiles::Tiles;
 use glam::Vec3;
 
@@ -100,7 +100,7 @@ impl Packet<'_, '_> {
                 let n = nv(i);
                 (n.x * to_light.x[i]) + (n.y * to_light.y[i]) + (n.z * to_light.z[i])
             });
-            let blocked = self.shadows(floor, (x0, y, li), start, &to_light, &dist, &lambert, tile);
+            let blocked = self.shadows(floor, (x0, y, li), start, &to_light, &dist, &lambert);
             for i in 0..LANES {
                 if lambert[i] <= 0.0 || blocked[i] {
                     continue;
@@ -139,9 +139,9 @@ impl Packet<'_, '_> {
     }
 
     /// Per lane, whether the shadow ray from `start` towards light `li` is
-    /// blocked (lanes facing away, `lambert <= 0`, are not traced). Where no
-    /// caster can shadow the tile, only the planes are tested, all lanes at once.
-    #[expect(clippy::too_many_arguments, reason = "the lanes' state, passed down")]
+    /// blocked (lanes facing away, `lambert <= 0`, are not traced): where no
+    /// caster can shadow the tile, only the planes are tested; elsewhere what
+    /// the lane's footprint cell lists too ([`Self::occluded_lanes`]).
     #[inline(always)]
     fn shadows(
         &self,
@@ -151,7 +151,6 @@ impl Packet<'_, '_> {
         to_light: &V8,
         dist: &F8,
         lambert: &F8,
-        tile: Option<(&Tiles, u32, u32)>,
     ) -> [bool; LANES] {
         if self.tiles.shadow_clear(floor.object, li, x0, y) {
             let mut blocked = [false; LANES];
@@ -163,29 +162,14 @@ impl Packet<'_, '_> {
             }
             return blocked;
         }
-        let mut motion = Motion::new(None);
-        lanes(|i| {
-            lambert[i] > 0.0 && {
-                let shadow = Ray {
-                    origin: start.lane(i),
-                    dir: to_light.lane(i),
-                };
-                blocked(
-                    self.p,
-                    &shadow,
-                    dist[i],
-                    (floor.object, li),
-                    tile,
-                    &mut motion,
-                )
-            }
-        })
+        let want = lanes(|i| lambert[i] > 0.0);
+        self.occluded_lanes((floor.object, li), start, to_light, dist, want)
     }
 
     /// Per lane, where the ray from `origin` along `dir` meets plane object `k`
     /// (`hit_plane`), or infinity for a miss.
     #[inline(always)]
-    fn plane_hits(&self, k: usize, origin: &V8, dir: &V8) -> F8 {
+    pub(super) fn plane_hits(&self, k: usize, origin: &V8, dir: &V8) -> F8 {
         let Shape::Plane { point, normal } = self.p.scene.objects[k].shape else {
             unreachable!("planes() lists planes")
         };
