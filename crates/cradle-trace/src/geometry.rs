@@ -100,9 +100,8 @@ impl Cylinder {
         // b); the normal is worked out once, for the one kept.
         const BODY: u8 = 0;
         let mut best: Option<(f32, u8)> = None;
-        let nearer = |best: Option<(f32, u8)>, t: f32| {
-            t > T_MIN && best.is_none_or(|(bt, _)| t < bt)
-        };
+        let nearer =
+            |best: Option<(f32, u8)>, t: f32| t > T_MIN && best.is_none_or(|(bt, _)| t < bt);
         // Body: |o_perp + t d_perp| = r, within the axial extent. A ray parallel to the
         // axis (qa ~ 0) can only meet the caps.
         if qa > 1e-12 {

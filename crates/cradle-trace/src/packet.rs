@@ -115,22 +115,36 @@ impl Packet<'_, '_> {
     /// Traces pixels `x0..x0 + 8` of row `y` at their centres into `out` (8 RGBA
     /// pixels) when `floor` is all their tile holds; false (nothing written) when a
     /// lane's ray misses it, for the scalar path to trace.
-    pub(crate) fn floor(&self, floor: &Floor<'_>, x0: u32, y: u32, out: &mut [u8]) -> bool {
+    pub(crate) fn floor(
+        &self,
+        floor: &Floor<'_>,
+        others: &[usize],
+        x0: u32,
+        y: u32,
+        out: &mut [u8],
+    ) -> bool {
         #[cfg(target_arch = "x86_64")]
         if super::simd::avx2() {
             // SAFETY: the CPU has AVX2, checked just above.
             #[expect(unsafe_code, reason = "the one run-time dispatch to the AVX2 build")]
-            return unsafe { self.floor_avx2(floor, x0, y, out) };
+            return unsafe { self.floor_avx2(floor, others, x0, y, out) };
         }
-        self.floor_lanes::<false>(floor, x0, y, out)
+        self.floor_lanes::<false>(floor, others, x0, y, out)
     }
 
     /// [`Self::floor_lanes`] compiled for AVX2 (8 lanes in one register); no FMA,
     /// which AVX2 does not imply.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
-    fn floor_avx2(&self, floor: &Floor<'_>, x0: u32, y: u32, out: &mut [u8]) -> bool {
-        self.floor_lanes::<true>(floor, x0, y, out)
+    fn floor_avx2(
+        &self,
+        floor: &Floor<'_>,
+        others: &[usize],
+        x0: u32,
+        y: u32,
+        out: &mut [u8],
+    ) -> bool {
+        self.floor_lanes::<true>(floor, others, x0, y, out)
     }
 
     /// The packet's lanes; `AVX2`: compiled into the AVX2 build, which may use
@@ -139,6 +153,7 @@ impl Packet<'_, '_> {
     fn floor_lanes<const AVX2: bool>(
         &self,
         floor: &Floor<'_>,
+        others: &[usize],
         x0: u32,
         y: u32,
         out: &mut [u8],
@@ -167,6 +182,12 @@ impl Packet<'_, '_> {
         // in any lane: the scalar path traces them all.
         let hits = |i: usize| denom[i].abs() >= 1e-9 && t[i] > T_MIN && t[i] < f32::INFINITY;
         if !(0..LANES).all(hits) {
+            return false;
+        }
+        // closest_among, after the plane: each other candidate through its box
+        // with the plane's t as the limit. One that any lane meets first sends
+        // the packet to the scalar path.
+        if !others.is_empty() && self.nearer_than(others, &d, &t) {
             return false;
         }
         // closest_among: the normal faces the ray.

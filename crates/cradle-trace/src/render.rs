@@ -135,11 +135,9 @@ impl<'a> Frame<'a> {
                 && x + lanes <= self.width
             {
                 let span = &mut out[x as usize * 4..(x + lanes) as usize * 4];
-                if pk
-                    .tiles
-                    .only_plane(pk.p, x, y, lanes)
-                    .and_then(|plane| Floor::of(pk.p, pk.cam, plane))
-                    .is_some_and(|f| pk.floor(&f, x, y, span))
+                if let Some((plane, others)) = pk.tiles.plane_among(pk.p, x, y, lanes)
+                    && let Some(f) = Floor::of(pk.p, pk.cam, plane)
+                    && pk.floor(&f, others.as_slice(), x, y, span)
                 {
                     x += lanes;
                     continue;

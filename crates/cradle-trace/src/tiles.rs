@@ -28,6 +28,24 @@ pub struct Tiles {
     clear: Vec<(usize, Vec<u32>)>,
 }
 
+/// The bounded candidates whose rectangles reach a packet's pixels.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Reaching {
+    ids: [usize; Self::MAX],
+    len: usize,
+}
+
+impl Reaching {
+    /// At most this many; a packet reached by more is traced pixel by pixel.
+    pub const MAX: usize = 16;
+
+    /// The object indices, in query order.
+    #[must_use]
+    pub fn as_slice(&self) -> &[usize] {
+        &self.ids[..self.len]
+    }
+}
+
 /// Pixel-space bounds of a box, or `None` when a corner is not in front of the eye
 /// (then the box may cover any pixel).
 fn screen_bounds(cam: &CameraRays, min: Vec3, max: Vec3) -> Option<(f32, f32, f32, f32)> {
@@ -108,24 +126,39 @@ impl Tiles {
         }
     }
 
-    /// The one plane that the primary rays of pixels `x..x + n` of row `y` (all in
-    /// one tile) can hit, when nothing else can: no other candidate of the tile has
-    /// a rectangle reaching those pixels.
+    /// The one plane among the candidates whose rectangles reach pixels `x..x +
+    /// n` of row `y` (all in one tile), and the other such candidates (at most
+    /// [`Reaching::MAX`], in query order); `None` for no plane, several, or too
+    /// many others. A primary ray through those pixels can hit nothing else.
     #[must_use]
-    pub fn only_plane(&self, p: &Prepared<'_>, x: u32, y: u32, n: u32) -> Option<usize> {
+    pub fn plane_among(
+        &self,
+        p: &Prepared<'_>,
+        x: u32,
+        y: u32,
+        n: u32,
+    ) -> Option<(usize, Reaching)> {
         let (xa, xb, ya, yb) = (x as f32, (x + n) as f32, y as f32, (y + 1) as f32);
         let mut plane = None;
+        let mut others = Reaching::default();
         for &i in self.at(x, y) {
             let [x0, y0, x1, y1] = self.rects[i];
             if x1 < xa || x0 > xb || y1 < ya || y0 > yb {
                 continue;
             }
-            if plane.is_some() || !matches!(p.scene.objects[i].shape, Shape::Plane { .. }) {
+            if matches!(p.scene.objects[i].shape, Shape::Plane { .. }) {
+                if plane.is_some() {
+                    return None;
+                }
+                plane = Some(i);
+            } else if others.len == Reaching::MAX {
                 return None;
+            } else {
+                others.ids[others.len] = i;
+                others.len += 1;
             }
-            plane = Some(i);
         }
-        plane
+        Some((plane?, others))
     }
 
     /// Whether the shadow rays towards light `light` from plane `plane`'s points

@@ -136,7 +136,8 @@ fn blocks8(g: &Geom, o: &V8, d: &V8, t_max: &F8) -> B8 {
                     let (oi, di) = (o.lane(i), d.lane(i));
                     for (end, along) in [(a, 0.0), (b, len)] {
                         let t = (along - ou[i]) / du[i];
-                        if nearer(best, t) && ((oi + di * t) - end).length_squared() <= radius * radius
+                        if nearer(best, t)
+                            && ((oi + di * t) - end).length_squared() <= radius * radius
                         {
                             best = Some(t);
                         }
@@ -150,6 +151,31 @@ fn blocks8(g: &Geom, o: &V8, d: &V8, t_max: &F8) -> B8 {
 }
 
 impl Packet<'_, '_> {
+    /// Whether any of the objects `others` meets some lane's primary ray (from
+    /// the eye along `d`) before `t`: `closest_among`'s box test with `t` as the
+    /// limit, then its hit test.
+    #[inline(always)]
+    pub(super) fn nearer_than(&self, others: &[usize], d: &V8, t: &F8) -> bool {
+        let o = self.cam.origin;
+        let eye = V8 {
+            x: [o.x; LANES],
+            y: [o.y; LANES],
+            z: [o.z; LANES],
+        };
+        let inv = V8 {
+            x: f8(|i| 1.0 / d.x[i]),
+            y: f8(|i| 1.0 / d.y[i]),
+            z: f8(|i| 1.0 / d.z[i]),
+        };
+        others.iter().any(|&k| {
+            let inside = box8(&self.p.boxes[k], &eye, &inv, t);
+            inside.contains(&true) && {
+                let hit = blocks8(self.p.geom(k), &eye, d, t);
+                (0..LANES).any(|i| inside[i] && hit[i])
+            }
+        })
+    }
+
     /// Per lane, `Prepared::occluded_by(ray, dist, footprints)` for the shadow
     /// rays from `start` along `dir` towards light `li` of floor object `plane`,
     /// for the lanes in `want` (the others answer false).
@@ -185,11 +211,12 @@ impl Packet<'_, '_> {
         let lists: [Option<(&[usize], &[usize])>; LANES] =
             std::array::from_fn(|i| fp.and_then(|f| f.candidates(start.lane(i))));
         while let Some(first) = (0..LANES).find(|&i| todo[i]) {
-            let same = |a: Option<(&[usize], &[usize])>, b: Option<(&[usize], &[usize])>| match (a, b) {
-                (Some((c, x)), Some((d, y))) => std::ptr::eq(c, d) && std::ptr::eq(x, y),
-                (None, None) => true,
-                _ => false,
-            };
+            let same =
+                |a: Option<(&[usize], &[usize])>, b: Option<(&[usize], &[usize])>| match (a, b) {
+                    (Some((c, x)), Some((d, y))) => std::ptr::eq(c, d) && std::ptr::eq(x, y),
+                    (None, None) => true,
+                    _ => false,
+                };
             let group: B8 = std::array::from_fn(|i| todo[i] && same(lists[i], lists[first]));
             let mut test = |k: usize| {
                 let live: B8 = std::array::from_fn(|i| group[i] && !out[i]);
