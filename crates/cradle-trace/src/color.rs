@@ -41,8 +41,8 @@ pub fn srgb8(linear: f32) -> u8 {
 /// [`srgb8`] of eight values at once, for packets: the same count of decision
 /// points at or below each value, found by a binary search without branches
 /// (eight halving steps over the 255 thresholds, indices at most 254), which the
-/// compiler can run in SIMD lanes with gathers. NaN counts as 0, as there.
-#[inline(always)]
+/// compiler can run in SIMD lanes. NaN counts as 0, as there.
+#[inline]
 #[must_use]
 pub fn srgb8_lanes(linear: [f32; 8]) -> [u8; 8] {
     let t = thresholds();
@@ -62,11 +62,14 @@ pub fn srgb8_lanes(linear: [f32; 8]) -> [u8; 8] {
 
 /// [`srgb8_lanes`] with AVX2's gathers: each halving step loads the eight
 /// thresholds in one instruction. The same comparisons, so the same bytes.
+///
+/// # Safety
+/// The CPU must have AVX2.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 #[inline]
 #[must_use]
-pub fn srgb8_avx2(linear: [f32; 8]) -> [u8; 8] {
+pub(crate) fn srgb8_avx2(linear: [f32; 8]) -> [u8; 8] {
     use std::arch::x86_64::{
         _CMP_LE_OQ, _mm256_add_epi32, _mm256_and_si256, _mm256_castps_si256, _mm256_cmp_ps,
         _mm256_i32gather_ps, _mm256_loadu_ps, _mm256_set1_epi32, _mm256_setzero_si256,

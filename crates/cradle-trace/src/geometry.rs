@@ -96,9 +96,8 @@ impl Cylinder {
         let o_perp = ao - u * ou;
         let qa = d_perp.length_squared();
         let qb = o_perp.dot(d_perp);
-        // The nearest root so far and where it lies (body, or the cap at a or
-        // b); the normal is worked out once, for the one kept.
-        const BODY: u8 = 0;
+        // The nearest root so far and where it lies (0 the body, 1 and 2 the caps
+        // at a and b); the normal is worked out once, for the one kept.
         let mut best: Option<(f32, u8)> = None;
         let nearer =
             |best: Option<(f32, u8)>, t: f32| t > T_MIN && best.is_none_or(|(bt, _)| t < bt);
@@ -118,7 +117,7 @@ impl Cylinder {
             for t in [(-qb - s) / qa, (-qb + s) / qa] {
                 let along = ou + t * du;
                 if (0.0..=len).contains(&along) && nearer(best, t) {
-                    best = Some((t, BODY));
+                    best = Some((t, 0));
                 }
             }
         }
@@ -134,7 +133,7 @@ impl Cylinder {
         }
         best.map(|(t, part)| {
             let normal = match part {
-                BODY => (o_perp + d_perp * t).normalize(),
+                0 => (o_perp + d_perp * t).normalize(),
                 1 => -u,
                 _ => u,
             };

@@ -11,10 +11,6 @@
     clippy::inline_always,
     reason = "the lane code is inlined into each entry point, so the AVX2 one compiles it for AVX2"
 )]
-#![expect(
-    clippy::needless_range_loop,
-    reason = "a lane index reads several arrays at once"
-)]
 
 use super::{F8, LANES, Packet, V8, f8};
 use crate::geometry::{Aabb, T_MIN};
