@@ -21,6 +21,17 @@ enum Source {
     Directional(Vec3),
 }
 
+/// Where a shadow ray's start finds its candidates ([`Footprints::lookup`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Lookup {
+    /// Behind the plane or level with the light: every object is a candidate.
+    Unlit,
+    /// Off the grid: only the objects that can shadow any point.
+    Always,
+    /// In this cell (row-major index).
+    Cell(usize),
+}
+
 /// The objects that can shadow each cell of one plane from one light.
 #[derive(Debug, Clone)]
 pub struct Footprints {
@@ -221,25 +232,46 @@ impl Footprints {
         (y0..=y1).all(|y| (x0..=x1).all(|x| self.cells[y * self.n.0 + x].is_empty()))
     }
 
-    /// The objects that can block a shadow ray starting at `start` (just off the
-    /// plane on its lit side): the cell's and the always-tested ones. `None` when
-    /// `start` is not on the lit side.
+    /// The objects that can block a shadow ray from `start` (a point on the lit
+    /// side of the plane, or lifted off it): its cell's, and the ones that can
+    /// shadow any point. `None` when `start` projects nowhere useful (behind the
+    /// plane, or level with the light): test everything then.
     #[must_use]
     pub fn candidates(&self, start: Vec3) -> Option<(&[usize], &[usize])> {
+        self.list(self.lookup(start))
+    }
+
+    /// Where `start`'s candidates are, as a value: equal lookups give the same
+    /// lists, so a packet's lanes can share one.
+    #[inline]
+    #[must_use]
+    pub(crate) fn lookup(&self, start: Vec3) -> Lookup {
         if (start - self.origin).dot(self.normal) < 0.0 {
-            return None;
+            return Lookup::Unlit;
         }
-        let empty: &[usize] = &[];
-        let q = self.project(start)?;
+        let Some(q) = self.project(start) else {
+            return Lookup::Unlit;
+        };
         if self.cells.is_empty() {
-            return Some((empty, &self.always));
+            return Lookup::Always;
         }
         let c = (q - self.min) * self.inv_cell;
         let inside = c.x >= 0.0 && c.y >= 0.0 && c.x < self.n.0 as f32 && c.y < self.n.1 as f32;
         if !inside {
-            return Some((empty, &self.always));
+            return Lookup::Always;
         }
         let (x, y) = self.cell_of(q);
-        Some((&self.cells[y * self.n.0 + x], &self.always))
+        Lookup::Cell(y * self.n.0 + x)
+    }
+
+    /// The lists a [`Self::lookup`] names.
+    #[inline]
+    #[must_use]
+    pub(crate) fn list(&self, at: Lookup) -> Option<(&[usize], &[usize])> {
+        match at {
+            Lookup::Unlit => None,
+            Lookup::Always => Some((&[], &self.always)),
+            Lookup::Cell(k) => Some((&self.cells[k], &self.always)),
+        }
     }
 }

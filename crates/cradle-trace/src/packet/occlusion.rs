@@ -15,6 +15,7 @@
 use super::{F8, LANES, Packet, V8, f8};
 use crate::geometry::{Aabb, T_MIN};
 use crate::prepared::Geom;
+use crate::shadow::Lookup;
 use glam::Vec3;
 
 type B8 = [bool; LANES];
@@ -202,18 +203,12 @@ impl Packet<'_, '_> {
         let group = box8(&p.group, start, &inv, dist);
         let mut todo: B8 = std::array::from_fn(|i| want[i] && !out[i] && group[i]);
         let fp = p.footprints(plane, li);
-        // Lane by lane, its footprint cell (or all bounded objects); lanes with
-        // the same list are tested together.
-        let lists: [Option<(&[usize], &[usize])>; LANES] =
-            std::array::from_fn(|i| fp.and_then(|f| f.candidates(start.lane(i))));
+        // Lane by lane, where its footprint cell is (or no grid: every object);
+        // lanes with the same lists are tested together.
+        let at: [Lookup; LANES] =
+            std::array::from_fn(|i| fp.map_or(Lookup::Unlit, |f| f.lookup(start.lane(i))));
         while let Some(first) = (0..LANES).find(|&i| todo[i]) {
-            let same =
-                |a: Option<(&[usize], &[usize])>, b: Option<(&[usize], &[usize])>| match (a, b) {
-                    (Some((c, x)), Some((d, y))) => std::ptr::eq(c, d) && std::ptr::eq(x, y),
-                    (None, None) => true,
-                    _ => false,
-                };
-            let group: B8 = std::array::from_fn(|i| todo[i] && same(lists[i], lists[first]));
+            let group: B8 = std::array::from_fn(|i| todo[i] && at[i] == at[first]);
             let mut test = |k: usize| {
                 let live: B8 = std::array::from_fn(|i| group[i] && !out[i]);
                 if !live.contains(&true) {
@@ -228,7 +223,7 @@ impl Packet<'_, '_> {
                     out[i] |= live[i] && inside[i] && hit[i];
                 }
             };
-            match lists[first] {
+            match fp.and_then(|f| f.list(at[first])) {
                 Some((cell, always)) => cell.iter().chain(always).for_each(|&k| test(k)),
                 None => p.bounded.iter().for_each(|&(k, _)| test(k)),
             }
