@@ -113,8 +113,10 @@ pub(crate) struct Packet<'a, 'p> {
 
 impl Packet<'_, '_> {
     /// Traces pixels `x0..x0 + 8` of row `y` at their centres into `out` (8 RGBA
-    /// pixels) when `floor` is all their tile holds; false (nothing written) when a
-    /// lane's ray misses it, for the scalar path to trace.
+    /// pixels) where the nearest hit is `floor` (`others`: the other objects that
+    /// can be met there): a bit per lane written. The other lanes (a ray that
+    /// misses the floor, or meets another object first; all of them when any
+    /// lane misses the floor) are left for the scalar path.
     pub(crate) fn floor(
         &self,
         floor: &Floor<'_>,
@@ -122,7 +124,7 @@ impl Packet<'_, '_> {
         x0: u32,
         y: u32,
         out: &mut [u8],
-    ) -> bool {
+    ) -> u8 {
         #[cfg(target_arch = "x86_64")]
         if super::simd::avx2() {
             // SAFETY: the CPU has AVX2, checked just above.
@@ -143,7 +145,7 @@ impl Packet<'_, '_> {
         x0: u32,
         y: u32,
         out: &mut [u8],
-    ) -> bool {
+    ) -> u8 {
         self.floor_lanes::<true>(floor, others, x0, y, out)
     }
 
@@ -157,7 +159,7 @@ impl Packet<'_, '_> {
         x0: u32,
         y: u32,
         out: &mut [u8],
-    ) -> bool {
+    ) -> u8 {
         let c = self.cam;
         // CameraRays::ray(x + 0.5, y + 0.5).
         let sx = f8(|i| 2.0 * ((x0 + i as u32) as f32 + 0.5) / c.width - 1.0);
@@ -182,14 +184,20 @@ impl Packet<'_, '_> {
         // in any lane: the scalar path traces them all.
         let hits = |i: usize| denom[i].abs() >= 1e-9 && t[i] > T_MIN && t[i] < f32::INFINITY;
         if !(0..LANES).all(hits) {
-            return false;
+            return 0;
         }
         // closest_among, after the plane: each other candidate through its box
-        // with the plane's t as the limit. One that any lane meets first sends
-        // the packet to the scalar path.
-        if !others.is_empty() && self.nearer_than(others, &d, &t) {
-            return false;
+        // with the plane's t as the limit. Lanes that meet one first are the
+        // scalar path's.
+        let front = if others.is_empty() {
+            [false; LANES]
+        } else {
+            self.nearer_than(others, &d, &t)
+        };
+        if !front.contains(&false) {
+            return 0;
         }
+        let on_floor: [bool; LANES] = std::array::from_fn(|i| !front[i]);
         // closest_among: the normal faces the ray.
         let n = f8(|i| {
             if (floor.normal.x * d.x[i]) + (floor.normal.y * d.y[i]) + (floor.normal.z * d.z[i])
@@ -219,7 +227,7 @@ impl Packet<'_, '_> {
             y: f8(|i| point.y[i] + nv(i).y * SURFACE_OFFSET),
             z: f8(|i| point.z[i] + nv(i).z * SURFACE_OFFSET),
         };
-        let color = self.shade_lanes(floor, (x0, y), &d, &point, &start, &nv);
+        let color = self.shade_lanes(floor, (x0, y), on_floor, (&d, &point, &start), &nv);
         let srgb = |c: F8| {
             #[cfg(target_arch = "x86_64")]
             if AVX2 {
@@ -231,9 +239,13 @@ impl Packet<'_, '_> {
             srgb8_lanes(c)
         };
         let (r, g, b) = (srgb(color.x), srgb(color.y), srgb(color.z));
+        let mut done = 0u8;
         for (i, px) in out.chunks_exact_mut(4).enumerate() {
-            px.copy_from_slice(&[r[i], g[i], b[i], 255]);
+            if on_floor[i] {
+                px.copy_from_slice(&[r[i], g[i], b[i], 255]);
+                done |= 1 << i;
+            }
         }
-        true
+        done
     }
 }

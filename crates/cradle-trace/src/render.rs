@@ -135,14 +135,15 @@ impl<'a> Frame<'a> {
                 && x + lanes <= self.width
             {
                 let span = &mut out[x as usize * 4..(x + lanes) as usize * 4];
-                if let Some((plane, others)) = pk.tiles.plane_among(pk.p, x, y, lanes)
-                    && let Some(f) = Floor::of(pk.p, pk.cam, plane)
-                    && pk.floor(&f, others.as_slice(), x, y, span)
-                {
-                    x += lanes;
-                    continue;
-                }
+                let done = match pk.tiles.plane_among(pk.p, x, y, lanes) {
+                    Some((plane, others)) => Floor::of(pk.p, pk.cam, plane)
+                        .map_or(0, |f| pk.floor(&f, others.as_slice(), x, y, span)),
+                    None => 0,
+                };
                 for i in x..x + lanes {
+                    if done & (1 << (i - x)) != 0 {
+                        continue;
+                    }
                     let px = &mut out[i as usize * 4..i as usize * 4 + 4];
                     cells[i as usize] = self.put_with(i, y, px, offsets);
                 }

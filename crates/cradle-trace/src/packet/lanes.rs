@@ -29,9 +29,8 @@ impl Packet<'_, '_> {
         &self,
         floor: &Floor<'_>,
         (x0, y): (u32, u32),
-        d: &V8,
-        point: &V8,
-        start: &V8,
+        on_floor: [bool; LANES],
+        (d, point, start): (&V8, &V8, &V8),
         nv: &impl Fn(usize) -> Vec3,
     ) -> V8 {
         let p = self.p;
@@ -100,7 +99,9 @@ impl Packet<'_, '_> {
                 let n = nv(i);
                 (n.x * to_light.x[i]) + (n.y * to_light.y[i]) + (n.z * to_light.z[i])
             });
-            let blocked = self.shadows(floor, (x0, y, li), start, &to_light, &dist, &lambert);
+            // Lanes off the floor are the scalar path's: no shadow rays for them.
+            let lit = f8(|i| if on_floor[i] { lambert[i] } else { 0.0 });
+            let blocked = self.shadows(floor, (x0, y, li), start, &to_light, &dist, &lit);
             for i in 0..LANES {
                 if lambert[i] <= 0.0 || blocked[i] {
                     continue;
@@ -127,7 +128,7 @@ impl Packet<'_, '_> {
         }
         let r = m.reflective;
         if r > 0.0 && 0 < p.scene.max_depth && r * self.bound >= BAILOUT {
-            let refl = self.mirrors(floor, (x0, y), d, start, nv, r, tile);
+            let refl = self.mirrors(floor, (x0, y, on_floor), d, start, nv, r, tile);
             // color = color * (1.0 - r) + reflected * r
             for i in 0..LANES {
                 color.x[i] = color.x[i] * (1.0 - r) + refl.x[i] * r;
@@ -196,7 +197,7 @@ impl Packet<'_, '_> {
     fn mirrors(
         &self,
         floor: &Floor<'_>,
-        (x0, y): (u32, u32),
+        (x0, y, on_floor): (u32, u32, [bool; LANES]),
         d: &V8,
         start: &V8,
         nv: &impl Fn(usize) -> Vec3,
@@ -237,7 +238,7 @@ impl Packet<'_, '_> {
         let bg = self.p.scene.background;
         let mut motion = Motion::new(None);
         let lanes: [Vec3; LANES] = lanes(|i| {
-            if missed[i] {
+            if missed[i] || !on_floor[i] {
                 return bg;
             }
             let mirror = Ray {

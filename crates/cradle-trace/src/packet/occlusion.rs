@@ -18,7 +18,7 @@ use crate::prepared::Geom;
 use crate::shadow::Lookup;
 use glam::Vec3;
 
-type B8 = [bool; LANES];
+pub(super) type B8 = [bool; LANES];
 
 /// `a.dot(b)` per lane, for lane vectors: `(a.x * b.x) + (a.y * b.y) + (a.z * b.z)`.
 #[inline(always)]
@@ -148,11 +148,11 @@ fn blocks8(g: &Geom, o: &V8, d: &V8, t_max: &F8) -> B8 {
 }
 
 impl Packet<'_, '_> {
-    /// Whether any of the objects `others` meets some lane's primary ray (from
-    /// the eye along `d`) before `t`: `closest_among`'s box test with `t` as the
-    /// limit, then its hit test.
+    /// Per lane, whether any of the objects `others` meets its primary ray
+    /// (from the eye along `d`) before `t`: `closest_among`'s box test with `t`
+    /// as the limit, then its hit test.
     #[inline(always)]
-    pub(super) fn nearer_than(&self, others: &[usize], d: &V8, t: &F8) -> bool {
+    pub(super) fn nearer_than(&self, others: &[usize], d: &V8, t: &F8) -> B8 {
         let o = self.cam.origin;
         let eye = V8 {
             x: [o.x; LANES],
@@ -164,13 +164,17 @@ impl Packet<'_, '_> {
             y: f8(|i| 1.0 / d.y[i]),
             z: f8(|i| 1.0 / d.z[i]),
         };
-        others.iter().any(|&k| {
+        let mut front = [false; LANES];
+        for &k in others {
             let inside = box8(&self.p.boxes[k], &eye, &inv, t);
-            inside.contains(&true) && {
+            if inside.contains(&true) {
                 let hit = blocks8(self.p.geom(k), &eye, d, t);
-                (0..LANES).any(|i| inside[i] && hit[i])
+                for i in 0..LANES {
+                    front[i] |= inside[i] && hit[i];
+                }
             }
-        })
+        }
+        front
     }
 
     /// Per lane, `Prepared::occluded_by(ray, dist, footprints)` for the shadow
