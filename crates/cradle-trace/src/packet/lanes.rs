@@ -13,6 +13,7 @@
     reason = "a lane index reads several arrays at once"
 )]
 
+use super::occlusion::{blocks8, box8};
 use super::{F8, Floor, LANES, Packet, V8, f8, lanes};
 use crate::geometry::{Ray, T_MIN};
 use crate::motion::Motion;
@@ -190,8 +191,9 @@ impl Packet<'_, '_> {
     }
 
     /// Per lane, the radiance the floor's mirror rays bring back (`reflect` at
-    /// depth 1 with weight `r`): when the tile's mirror candidates are planes
-    /// only, lanes whose rays miss them see the background, all at once.
+    /// depth 1 with weight `r`): lanes whose rays meet none of the tile's mirror
+    /// candidates see the background, found for all lanes at once; the others
+    /// go through `reflect`.
     #[expect(clippy::too_many_arguments, reason = "the lanes' state, passed down")]
     #[inline(always)]
     fn mirrors(
@@ -219,21 +221,35 @@ impl Packet<'_, '_> {
                 d.z[i] - (2.0 * ((d.x[i] * n.x) + (d.y[i] * n.y) + (d.z[i] * n.z))) * n.z
             }),
         };
-        let list = self.tiles.mirror_at(floor.object, x0, y).unwrap_or(&[]);
-        let planes_only = !list.is_empty()
-            && list
-                .iter()
-                .all(|&k| matches!(self.p.scene.objects[k].shape, Shape::Plane { .. }));
+        // Lanes whose mirror ray meets none of the tile's mirror candidates see
+        // the background (`closest_among` finds nothing): the planes' and the
+        // others' box and hit tests over the lanes, as in `nearer_than`.
         let mut missed = [false; LANES];
-        if planes_only {
-            let mut nearest = [f32::INFINITY; LANES];
+        if let Some(list) = self.tiles.mirror_at(floor.object, x0, y) {
+            let inv = V8 {
+                x: f8(|i| 1.0 / dir.x[i]),
+                y: f8(|i| 1.0 / dir.y[i]),
+                z: f8(|i| 1.0 / dir.z[i]),
+            };
+            let far = [f32::INFINITY; LANES];
+            let mut met = [false; LANES];
             for &k in list {
-                let t = self.plane_hits(k, start, &dir);
-                for i in 0..LANES {
-                    nearest[i] = nearest[i].min(t[i]);
+                if matches!(self.p.scene.objects[k].shape, Shape::Plane { .. }) {
+                    let t = self.plane_hits(k, start, &dir);
+                    for i in 0..LANES {
+                        met[i] |= t[i] < f32::INFINITY;
+                    }
+                    continue;
+                }
+                let inside = box8(&self.p.boxes[k], start, &inv, &far);
+                if inside.contains(&true) {
+                    let hit = blocks8(self.p.geom(k), start, &dir, &far);
+                    for i in 0..LANES {
+                        met[i] |= inside[i] && hit[i];
+                    }
                 }
             }
-            missed = f8(|i| nearest[i]).map(|t| t == f32::INFINITY);
+            missed = met.map(|m| !m);
         }
         let bg = self.p.scene.background;
         let mut motion = Motion::new(None);

@@ -40,7 +40,7 @@ fn sub8(o: &V8, c: Vec3) -> V8 {
 /// `a > b ? a : b`, `max_element` is `max(x, max(y, z))`, then `f32::max(T_MIN)`
 /// and `f32::min(t_max)`.
 #[inline(always)]
-fn box8(b: &Aabb, o: &V8, inv: &V8, t_max: &F8) -> B8 {
+pub(super) fn box8(b: &Aabb, o: &V8, inv: &V8, t_max: &F8) -> B8 {
     let mn = |a: f32, b: f32| if a < b { a } else { b };
     let mx = |a: f32, b: f32| if a > b { a } else { b };
     let slab = |lo: f32, hi: f32, o: &F8, inv: &F8| {
@@ -60,7 +60,7 @@ fn box8(b: &Aabb, o: &V8, inv: &V8, t_max: &F8) -> B8 {
 /// beyond `T_MIN`, as `hit_sphere` or `Cylinder::hit` finds it, is below
 /// `t_max`); planes are tested elsewhere.
 #[inline(always)]
-fn blocks8(g: &Geom, o: &V8, d: &V8, t_max: &F8) -> B8 {
+pub(super) fn blocks8(g: &Geom, o: &V8, d: &V8, t_max: &F8) -> B8 {
     match *g {
         Geom::Sphere { centre, radius } => {
             // hit_sphere: oc, b = oc.dot(dir), f = oc - dir * b, disc = r*r - |f|^2,
