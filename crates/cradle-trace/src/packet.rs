@@ -31,6 +31,10 @@ use glam::Vec3;
 /// Pixels per packet.
 pub const LANES: usize = 8;
 
+#[cfg(target_arch = "x86_64")]
+mod avx;
+#[cfg(test)]
+mod lane_tests;
 mod lanes;
 mod occlusion;
 

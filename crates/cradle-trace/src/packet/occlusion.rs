@@ -36,11 +36,23 @@ fn sub8(o: &V8, c: Vec3) -> V8 {
     }
 }
 
+/// A lane mask as booleans.
+#[inline(always)]
+fn bits(m: u8) -> B8 {
+    std::array::from_fn(|i| m >> i & 1 != 0)
+}
+
 /// `Aabb::hit` per lane: glam's vector `min`/`max` pick `a < b ? a : b` and
 /// `a > b ? a : b`, `max_element` is `max(x, max(y, z))`, then `f32::max(T_MIN)`
 /// and `f32::min(t_max)`.
 #[inline(always)]
 pub(super) fn box8(b: &Aabb, o: &V8, inv: &V8, t_max: &F8) -> B8 {
+    #[cfg(target_arch = "x86_64")]
+    if crate::simd::avx2() {
+        // SAFETY: the CPU has AVX2, checked just above.
+        #[expect(unsafe_code, reason = "the run-time dispatch to the AVX2 build")]
+        return bits(unsafe { super::avx::aabb(b, o, inv, t_max) });
+    }
     let mn = |a: f32, b: f32| if a < b { a } else { b };
     let mx = |a: f32, b: f32| if a > b { a } else { b };
     let slab = |lo: f32, hi: f32, o: &F8, inv: &F8| {
@@ -61,6 +73,18 @@ pub(super) fn box8(b: &Aabb, o: &V8, inv: &V8, t_max: &F8) -> B8 {
 /// `t_max`); planes are tested elsewhere.
 #[inline(always)]
 pub(super) fn blocks8(g: &Geom, o: &V8, d: &V8, t_max: &F8) -> B8 {
+    #[cfg(target_arch = "x86_64")]
+    if crate::simd::avx2() {
+        // SAFETY: the CPU has AVX2, checked just above.
+        #[expect(unsafe_code, reason = "the run-time dispatch to the AVX2 build")]
+        return bits(match *g {
+            Geom::Sphere { centre, radius } => unsafe {
+                super::avx::sphere(centre, radius, o, d, t_max)
+            },
+            Geom::Cylinder(ref c) => unsafe { super::avx::cylinder(c, o, d, t_max) },
+            Geom::Plane { .. } => 0,
+        });
+    }
     match *g {
         Geom::Sphere { centre, radius } => {
             // hit_sphere: oc, b = oc.dot(dir), f = oc - dir * b, disc = r*r - |f|^2,

@@ -1,0 +1,122 @@
+//! The lanes' box, sphere and cylinder tests (portable and AVX2 builds) against
+//! the scalar ones, lane by lane, on rays of every kind: random, along the axes
+//! (zero direction components, infinite inverses), from inside, grazing, along
+//! a cylinder's axis (caps only) and across it.
+
+use super::occlusion::{blocks8, box8};
+use super::{LANES, V8};
+use crate::geometry::{Aabb, Cylinder, Ray, hit_sphere};
+use crate::prepared::Geom;
+use glam::Vec3;
+
+struct Lcg(u32);
+impl Lcg {
+    fn f(&mut self) -> f32 {
+        self.0 = self.0.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+        (self.0 >> 8) as f32 / (1u32 << 24) as f32 * 2.0 - 1.0
+    }
+    fn v(&mut self) -> Vec3 {
+        Vec3::new(self.f(), self.f(), self.f())
+    }
+}
+
+/// Eight rays: random ones, axis-aligned ones and ones aimed at `target`.
+fn rays(rng: &mut Lcg, target: Vec3, round: usize) -> [Ray; LANES] {
+    std::array::from_fn(|i| {
+        let origin = match round % 3 {
+            0 => target + rng.v() * 0.5,
+            1 => target + rng.v() * 0.01,
+            _ => Vec3::new(target.x, target.y + 0.3, target.z),
+        };
+        let dir = match (round + i) % 4 {
+            0 => (target + rng.v() * 0.03 - origin).normalize(),
+            1 => [Vec3::X, -Vec3::Y, Vec3::Z, -Vec3::X][i % 4],
+            2 => rng.v().normalize(),
+            _ => (target - origin).normalize(),
+        };
+        Ray { origin, dir }
+    })
+}
+
+fn lanes_of(rays: &[Ray; LANES]) -> (V8, V8, V8) {
+    let v = |f: &dyn Fn(&Ray) -> Vec3| V8 {
+        x: std::array::from_fn(|i| f(&rays[i]).x),
+        y: std::array::from_fn(|i| f(&rays[i]).y),
+        z: std::array::from_fn(|i| f(&rays[i]).z),
+    };
+    (v(&|r| r.origin), v(&|r| r.dir), v(&|r| r.dir.recip()))
+}
+
+/// Runs `check` with the AVX2 build (where the CPU has it) and the portable one.
+fn both_builds(check: impl Fn()) {
+    check();
+    crate::simd::force_portable(true);
+    check();
+    crate::simd::force_portable(false);
+}
+
+#[test]
+fn lane_tests_answer_as_the_scalar_tests() {
+    let mut rng = Lcg(3);
+    let centre = Vec3::new(0.02, 0.09, -0.01);
+    let sphere = Geom::Sphere {
+        centre,
+        radius: 0.02,
+    };
+    let (a, b) = (Vec3::new(0.0, 0.25, -0.05), Vec3::new(0.01, 0.11, 0.0));
+    let cyl = Cylinder::new(a, b, 0.0006);
+    let rod = Cylinder::new(
+        Vec3::new(-0.2, 0.25, 0.05),
+        Vec3::new(0.2, 0.25, 0.05),
+        0.005,
+    );
+    let boxed = Aabb {
+        min: centre - 0.02,
+        max: centre + 0.02,
+    };
+    let seen = std::cell::Cell::new([0u32; 4]);
+    for round in 0..600 {
+        let target = match round % 3 {
+            0 => centre,
+            1 => (a + b) * 0.5,
+            _ => Vec3::new(0.1, 0.25, 0.05),
+        };
+        let r = rays(&mut rng, target, round);
+        let (o, d, inv) = lanes_of(&r);
+        for t_max in [f32::INFINITY, 0.3, 0.01] {
+            let tm = [t_max; LANES];
+            both_builds(|| {
+                let got = box8(&boxed, &o, &inv, &tm);
+                let hits = blocks8(&sphere, &o, &d, &tm);
+                let on_cyl = blocks8(&Geom::Cylinder(cyl), &o, &d, &tm);
+                let on_rod = blocks8(&Geom::Cylinder(rod), &o, &d, &tm);
+                for i in 0..LANES {
+                    let ray = &r[i];
+                    assert_eq!(
+                        got[i],
+                        boxed.hit(ray, ray.dir.recip(), t_max),
+                        "box {ray:?}"
+                    );
+                    let want = hit_sphere(ray, centre, 0.02).is_some_and(|t| t < t_max);
+                    assert_eq!(hits[i], want, "sphere {ray:?} {t_max}");
+                    let want = cyl.hit(ray).is_some_and(|(t, _)| t < t_max);
+                    assert_eq!(on_cyl[i], want, "string {ray:?} {t_max}");
+                    let want = rod.hit(ray).is_some_and(|(t, _)| t < t_max);
+                    assert_eq!(on_rod[i], want, "rod {ray:?} {t_max}");
+                    let mut n = seen.get();
+                    for (k, h) in [got[i], hits[i], on_cyl[i], on_rod[i]]
+                        .into_iter()
+                        .enumerate()
+                    {
+                        n[k] += u32::from(h);
+                    }
+                    seen.set(n);
+                }
+            });
+        }
+    }
+    // Each test both hit and missed many times (14,400 lane tests each).
+    for (what, n) in ["box", "sphere", "string", "rod"].iter().zip(seen.get()) {
+        assert!(n > 300 && n < 14_000, "{what}: {n} hits");
+    }
+}
