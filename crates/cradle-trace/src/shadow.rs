@@ -32,6 +32,23 @@ pub(crate) enum Lookup {
     Cell(usize),
 }
 
+/// [`Footprints::lookup`]'s numbers: the plane, the light (a point, or a
+/// direction of travel), the light's height over the plane (point) or the
+/// direction's component along the normal, and the grid.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct GridView {
+    pub origin: Vec3,
+    pub normal: Vec3,
+    pub e1: Vec3,
+    pub e2: Vec3,
+    pub light: Result<Vec3, Vec3>,
+    pub scale: f32,
+    pub min: Vec2,
+    pub inv_cell: Vec2,
+    pub n: (usize, usize),
+    pub gridded: bool,
+}
+
 /// The objects that can shadow each cell of one plane from one light.
 #[derive(Debug, Clone)]
 pub struct Footprints {
@@ -262,6 +279,29 @@ impl Footprints {
         }
         let (x, y) = self.cell_of(q);
         Lookup::Cell(y * self.n.0 + x)
+    }
+
+    /// What [`Self::lookup`] computes with, for the lanes' build of it.
+    #[must_use]
+    pub(crate) fn view(&self) -> GridView {
+        let (light, scale) = match self.source {
+            // project: height = (l - origin).dot(normal), the same every time.
+            Source::Point(l) => (Ok(l), (l - self.origin).dot(self.normal)),
+            // project: s = -(x - origin).dot(normal) / d.dot(normal).
+            Source::Directional(d) => (Err(d), d.dot(self.normal)),
+        };
+        GridView {
+            origin: self.origin,
+            normal: self.normal,
+            e1: self.e1,
+            e2: self.e2,
+            light,
+            scale,
+            min: self.min,
+            inv_cell: self.inv_cell,
+            n: self.n,
+            gridded: !self.cells.is_empty(),
+        }
     }
 
     /// The lists a [`Self::lookup`] names.

@@ -7,14 +7,16 @@
 //! code. So every lane's answer is the scalar one. Answers are bit masks, bit
 //! `i` for lane `i`.
 
-use super::{F8, V8};
+use super::{F8, LANES, V8};
 use crate::geometry::{Aabb, Cylinder, T_MIN};
+use crate::shadow::{GridView, Lookup};
 use glam::Vec3;
 use std::arch::x86_64::{
-    __m256, _CMP_GT_OQ, _CMP_LE_OQ, _CMP_LT_OQ, _CMP_NLT_UQ, _mm256_add_ps, _mm256_and_ps,
-    _mm256_andnot_ps, _mm256_blendv_ps, _mm256_cmp_ps, _mm256_div_ps, _mm256_loadu_ps,
-    _mm256_max_ps, _mm256_min_ps, _mm256_movemask_ps, _mm256_mul_ps, _mm256_set1_ps,
-    _mm256_sqrt_ps, _mm256_sub_ps, _mm256_xor_ps,
+    __m256, _CMP_GE_OQ, _CMP_GT_OQ, _CMP_LE_OQ, _CMP_LT_OQ, _CMP_NLT_UQ, _mm256_add_ps,
+    _mm256_and_ps, _mm256_andnot_ps, _mm256_blendv_ps, _mm256_cmp_ps, _mm256_cvttps_epi32,
+    _mm256_div_ps, _mm256_loadu_ps, _mm256_max_ps, _mm256_min_ps, _mm256_movemask_ps,
+    _mm256_mul_ps, _mm256_or_ps, _mm256_set1_ps, _mm256_sqrt_ps, _mm256_storeu_si256,
+    _mm256_sub_ps, _mm256_xor_ps,
 };
 
 /// The eight floats of `v`.
@@ -189,4 +191,95 @@ pub(super) fn cylinder(c: &Cylinder, o: &V8, d: &V8, t_max: &F8) -> u8 {
     }
     let hit = _mm256_andnot_ps(miss_all, _mm256_cmp_ps::<_CMP_LT_OQ>(best, load(t_max)));
     mask(hit)
+}
+
+/// `Footprints::lookup` of the lanes' shadow-ray starts `x`, with the same
+/// operations: the side of the plane, the projection from the light, the plane
+/// coordinates, the grid cell (truncation, as `as usize` of a value in
+/// `0..n`).
+#[target_feature(enable = "avx2")]
+pub(super) fn lookup(g: &GridView, x: &V8) -> [Lookup; LANES] {
+    let x = r3(x);
+    let splat = |v: Vec3| R3 {
+        x: _mm256_set1_ps(v.x),
+        y: _mm256_set1_ps(v.y),
+        z: _mm256_set1_ps(v.z),
+    };
+    let n = splat(g.normal);
+    let zero = _mm256_set1_ps(0.0);
+    // (start - origin).dot(normal) < 0: behind the plane.
+    let mut unlit = _mm256_cmp_ps::<_CMP_LT_OQ>(dot(sub_c(x, g.origin), n), zero);
+    let p = match g.light {
+        Ok(l) => {
+            // down = (l - x).dot(normal); down <= 1e-6 * height: level with it.
+            let lv = splat(l);
+            let down = dot(
+                R3 {
+                    x: _mm256_sub_ps(lv.x, x.x),
+                    y: _mm256_sub_ps(lv.y, x.y),
+                    z: _mm256_sub_ps(lv.z, x.z),
+                },
+                n,
+            );
+            let level = _mm256_cmp_ps::<_CMP_LE_OQ>(down, _mm256_set1_ps(1e-6 * g.scale));
+            unlit = _mm256_or_ps(unlit, level);
+            // l + (x - l) * (height / down)
+            let s = _mm256_div_ps(_mm256_set1_ps(g.scale), down);
+            let xl = sub_c(x, l);
+            R3 {
+                x: _mm256_add_ps(lv.x, _mm256_mul_ps(xl.x, s)),
+                y: _mm256_add_ps(lv.y, _mm256_mul_ps(xl.y, s)),
+                z: _mm256_add_ps(lv.z, _mm256_mul_ps(xl.z, s)),
+            }
+        }
+        Err(d) => {
+            // x + d * (-(x - origin).dot(normal) / d.dot(normal))
+            let s = _mm256_div_ps(neg(dot(sub_c(x, g.origin), n)), _mm256_set1_ps(g.scale));
+            let dv = splat(d);
+            R3 {
+                x: _mm256_add_ps(x.x, _mm256_mul_ps(dv.x, s)),
+                y: _mm256_add_ps(x.y, _mm256_mul_ps(dv.y, s)),
+                z: _mm256_add_ps(x.z, _mm256_mul_ps(dv.z, s)),
+            }
+        }
+    };
+    // coords: (p - origin).dot(e1), .dot(e2); then (q - min) * inv_cell.
+    let q = sub_c(p, g.origin);
+    let (qx, qy) = (dot(q, splat(g.e1)), dot(q, splat(g.e2)));
+    let cx = _mm256_mul_ps(
+        _mm256_sub_ps(qx, _mm256_set1_ps(g.min.x)),
+        _mm256_set1_ps(g.inv_cell.x),
+    );
+    let cy = _mm256_mul_ps(
+        _mm256_sub_ps(qy, _mm256_set1_ps(g.min.y)),
+        _mm256_set1_ps(g.inv_cell.y),
+    );
+    let inside = _mm256_and_ps(
+        _mm256_and_ps(
+            _mm256_cmp_ps::<_CMP_GE_OQ>(cx, zero),
+            _mm256_cmp_ps::<_CMP_GE_OQ>(cy, zero),
+        ),
+        _mm256_and_ps(
+            _mm256_cmp_ps::<_CMP_LT_OQ>(cx, _mm256_set1_ps(g.n.0 as f32)),
+            _mm256_cmp_ps::<_CMP_LT_OQ>(cy, _mm256_set1_ps(g.n.1 as f32)),
+        ),
+    );
+    let (unlit, inside) = (mask(unlit), mask(inside));
+    let (mut ix, mut iy) = ([0i32; LANES], [0i32; LANES]);
+    // SAFETY: stores of eight i32 into arrays of eight i32.
+    #[expect(unsafe_code, reason = "stores into arrays, in bounds by their type")]
+    unsafe {
+        _mm256_storeu_si256(ix.as_mut_ptr().cast(), _mm256_cvttps_epi32(cx));
+        _mm256_storeu_si256(iy.as_mut_ptr().cast(), _mm256_cvttps_epi32(cy));
+    }
+    std::array::from_fn(|i| {
+        if unlit >> i & 1 != 0 {
+            Lookup::Unlit
+        } else if !g.gridded || inside >> i & 1 == 0 {
+            Lookup::Always
+        } else {
+            // In the grid: 0 <= ix < n.0 and 0 <= iy < n.1.
+            Lookup::Cell(iy[i] as usize * g.n.0 + ix[i] as usize)
+        }
+    })
 }

@@ -120,3 +120,73 @@ fn lane_tests_answer_as_the_scalar_tests() {
         assert!(n > 300 && n < 14_000, "{what}: {n} hits");
     }
 }
+
+#[cfg(target_arch = "x86_64")]
+#[test]
+fn lane_lookups_find_the_scalar_cells() {
+    use crate::scene::Light;
+    use crate::shadow::{Footprints, Lookup};
+    if !std::arch::is_x86_feature_detected!("avx2") {
+        return;
+    }
+    let bounded: Vec<(usize, Aabb)> = (0..7)
+        .map(|i| {
+            let c = Vec3::new(i as f32 * 0.04 - 0.12, 0.09, 0.0);
+            (
+                i + 1,
+                Aabb {
+                    min: c - 0.02,
+                    max: c + 0.02,
+                },
+            )
+        })
+        .collect();
+    let lights = [
+        Light::Point {
+            position: Vec3::new(-0.6, 0.9, 0.8),
+            color: Vec3::ONE,
+        },
+        Light::Point {
+            position: Vec3::new(0.05, 0.12, 0.0),
+            color: Vec3::ONE,
+        },
+        Light::Directional {
+            direction: Vec3::new(0.3, -1.0, -0.2).normalize(),
+            color: Vec3::ONE,
+        },
+    ];
+    let mut rng = Lcg(5);
+    let mut kinds = [0u32; 3];
+    for light in &lights {
+        let fp = Footprints::new(Vec3::ZERO, Vec3::Y, light, &bounded).expect("lit");
+        for round in 0..500 {
+            // Starts just off the floor near the cradle and far out, some below
+            // it, some as high as the low light.
+            let start = V8 {
+                x: std::array::from_fn(|_| rng.f() * if round % 2 == 0 { 0.3 } else { 3.0 }),
+                y: std::array::from_fn(|i| match (round + i) % 5 {
+                    0 => -1e-5,
+                    1 => 0.12 + rng.f() * 1e-3,
+                    _ => 2e-5,
+                }),
+                z: std::array::from_fn(|_| rng.f() * 0.3),
+            };
+            // SAFETY: the CPU has AVX2, checked above.
+            #[expect(unsafe_code, reason = "calling the AVX2 build under test")]
+            let got = unsafe { super::avx::lookup(&fp.view(), &start) };
+            for (i, &got) in got.iter().enumerate() {
+                let want = fp.lookup(start.lane(i));
+                assert_eq!(got, want, "{light:?} at {:?}", start.lane(i));
+                kinds[match want {
+                    Lookup::Unlit => 0,
+                    Lookup::Always => 1,
+                    Lookup::Cell(_) => 2,
+                }] += 1;
+            }
+        }
+    }
+    assert!(
+        kinds.iter().all(|&k| k > 100),
+        "every kind of answer: {kinds:?}"
+    );
+}

@@ -233,8 +233,18 @@ impl Packet<'_, '_> {
         let fp = p.footprints(plane, li);
         // Lane by lane, where its footprint cell is (or no grid: every object);
         // lanes with the same lists are tested together.
-        let at: [Lookup; LANES] =
-            std::array::from_fn(|i| fp.map_or(Lookup::Unlit, |f| f.lookup(start.lane(i))));
+        let at: [Lookup; LANES] = match fp {
+            None => [Lookup::Unlit; LANES],
+            #[cfg(target_arch = "x86_64")]
+            Some(f) if crate::simd::avx2() => {
+                // SAFETY: the CPU has AVX2, checked just above.
+                #[expect(unsafe_code, reason = "the run-time dispatch to the AVX2 build")]
+                unsafe {
+                    super::avx::lookup(&f.view(), start)
+                }
+            }
+            Some(f) => std::array::from_fn(|i| f.lookup(start.lane(i))),
+        };
         while let Some(first) = (0..LANES).find(|&i| todo[i]) {
             let group: B8 = std::array::from_fn(|i| todo[i] && at[i] == at[first]);
             let mut test = |k: usize| {
