@@ -49,6 +49,16 @@ impl Packet<'_, '_> {
             }
             None => m.color,
         });
+        let b = V8 {
+            x: f8(|i| base[i].x),
+            y: f8(|i| base[i].y),
+            z: f8(|i| base[i].z),
+        };
+        let nn = V8 {
+            x: f8(|i| nv(i).x),
+            y: f8(|i| nv(i).y),
+            z: f8(|i| nv(i).z),
+        };
         let mut color = V8 {
             x: [0.0; LANES],
             y: [0.0; LANES],
@@ -58,11 +68,9 @@ impl Packet<'_, '_> {
             let (to_light, dist, lc) = match *light {
                 Light::Ambient { color: c } => {
                     // color += base * c
-                    for i in 0..LANES {
-                        color.x[i] += base[i].x * c.x;
-                        color.y[i] += base[i].y * c.y;
-                        color.z[i] += base[i].z * c.z;
-                    }
+                    color.x = f8(|i| color.x[i] + b.x[i] * c.x);
+                    color.y = f8(|i| color.y[i] + b.y[i] * c.y);
+                    color.z = f8(|i| color.z[i] + b.z[i] * c.z);
                     continue;
                 }
                 Light::Point { position, color: c } => {
@@ -97,29 +105,34 @@ impl Packet<'_, '_> {
             };
             // lambert = n.dot(to_light)
             let lambert = f8(|i| {
-                let n = nv(i);
-                (n.x * to_light.x[i]) + (n.y * to_light.y[i]) + (n.z * to_light.z[i])
+                (nn.x[i] * to_light.x[i]) + (nn.y[i] * to_light.y[i]) + (nn.z[i] * to_light.z[i])
             });
             // Lanes off the floor are the scalar path's: no shadow rays for them.
-            let lit = f8(|i| if on_floor[i] { lambert[i] } else { 0.0 });
-            let blocked = self.shadows(floor, (x0, y, li), start, &to_light, &dist, &lit);
-            for i in 0..LANES {
-                if lambert[i] <= 0.0 || blocked[i] {
-                    continue;
-                }
-                // color += base * light_color * lambert
-                color.x[i] += (base[i].x * lc.x) * lambert[i];
-                color.y[i] += (base[i].y * lc.y) * lambert[i];
-                color.z[i] += (base[i].z * lc.z) * lambert[i];
-                if let Some(exponent) = m.specular {
-                    // mirrored = 2.0 * lambert * n - to_light; facing = mirrored.dot(-dir)
-                    let (n, s) = (nv(i), 2.0 * lambert[i]);
-                    let mx = s * n.x - to_light.x[i];
-                    let my = s * n.y - to_light.y[i];
-                    let mz = s * n.z - to_light.z[i];
-                    let facing = (mx * -d.x[i]) + (my * -d.y[i]) + (mz * -d.z[i]);
-                    if facing > 0.0 {
-                        let k = facing.powf(exponent);
+            let want = f8(|i| if on_floor[i] { lambert[i] } else { 0.0 });
+            let blocked = self.shadows(floor, (x0, y, li), start, &to_light, &dist, &want);
+            // Skipped where lambert <= 0 or the light is blocked; else
+            // color += base * light_color * lambert.
+            let lit: [bool; LANES] = lanes(|i| !(lambert[i] <= 0.0) && !blocked[i]);
+            let add = |c: &F8, b: &F8, l: f32| {
+                f8(|i| if lit[i] { c[i] + (b[i] * l) * lambert[i] } else { c[i] })
+            };
+            color = V8 {
+                x: add(&color.x, &b.x, lc.x),
+                y: add(&color.y, &b.y, lc.y),
+                z: add(&color.z, &b.z, lc.z),
+            };
+            if let Some(exponent) = m.specular {
+                // mirrored = 2.0 * lambert * n - to_light; facing = mirrored.dot(-dir)
+                let facing = f8(|i| {
+                    let s = 2.0 * lambert[i];
+                    let mx = s * nn.x[i] - to_light.x[i];
+                    let my = s * nn.y[i] - to_light.y[i];
+                    let mz = s * nn.z[i] - to_light.z[i];
+                    (mx * -d.x[i]) + (my * -d.y[i]) + (mz * -d.z[i])
+                });
+                for i in 0..LANES {
+                    if lit[i] && facing[i] > 0.0 {
+                        let k = facing[i].powf(exponent);
                         color.x[i] += lc.x * k;
                         color.y[i] += lc.y * k;
                         color.z[i] += lc.z * k;
