@@ -114,7 +114,13 @@ impl Packet<'_, '_> {
             // color += base * light_color * lambert.
             let lit: [bool; LANES] = lanes(|i| !(lambert[i] <= 0.0) && !blocked[i]);
             let add = |c: &F8, b: &F8, l: f32| {
-                f8(|i| if lit[i] { c[i] + (b[i] * l) * lambert[i] } else { c[i] })
+                f8(|i| {
+                    if lit[i] {
+                        c[i] + (b[i] * l) * lambert[i]
+                    } else {
+                        c[i]
+                    }
+                })
             };
             color = V8 {
                 x: add(&color.x, &b.x, lc.x),

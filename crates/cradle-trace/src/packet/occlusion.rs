@@ -37,6 +37,7 @@ fn sub8(o: &V8, c: Vec3) -> V8 {
 }
 
 /// A lane mask as booleans.
+#[cfg(target_arch = "x86_64")]
 #[inline(always)]
 fn bits(m: u8) -> B8 {
     std::array::from_fn(|i| m >> i & 1 != 0)
