@@ -8,10 +8,6 @@
     clippy::inline_always,
     reason = "the lane code is inlined into each entry point, so the AVX2 one compiles it for AVX2"
 )]
-#![expect(
-    clippy::needless_range_loop,
-    reason = "a lane index reads several arrays at once"
-)]
 
 use super::occlusion::{blocks8, box8};
 use super::{F8, Floor, LANES, Packet, V8, f8, lanes};
@@ -37,28 +33,7 @@ impl Packet<'_, '_> {
         let p = self.p;
         let m = floor.material;
         let tile = Some((self.tiles, x0, y));
-        // base_color: a checker on the x-z grid, or plain.
-        let base: [Vec3; LANES] = lanes(|i| match m.checker {
-            Some((other, size)) => {
-                let cell = floor_i64(point.x[i] / size) + floor_i64(point.z[i] / size);
-                if cell.rem_euclid(2) == 0 {
-                    m.color
-                } else {
-                    other
-                }
-            }
-            None => m.color,
-        });
-        let b = V8 {
-            x: f8(|i| base[i].x),
-            y: f8(|i| base[i].y),
-            z: f8(|i| base[i].z),
-        };
-        let nn = V8 {
-            x: f8(|i| nv(i).x),
-            y: f8(|i| nv(i).y),
-            z: f8(|i| nv(i).z),
-        };
+        let (b, nn) = Self::surface_lanes(floor, point, nv);
         let mut color = V8 {
             x: [0.0; LANES],
             y: [0.0; LANES],
@@ -112,7 +87,9 @@ impl Packet<'_, '_> {
             let blocked = self.shadows(floor, (x0, y, li), start, &to_light, &dist, &want);
             // Skipped where lambert <= 0 or the light is blocked; else
             // color += base * light_color * lambert.
-            let lit: [bool; LANES] = lanes(|i| !(lambert[i] <= 0.0) && !blocked[i]);
+            // !(lambert <= 0): a NaN lambert is not skipped.
+            let lit: [bool; LANES] =
+                lanes(|i| (lambert[i] > 0.0 || lambert[i].is_nan()) && !blocked[i]);
             let add = |c: &F8, b: &F8, l: f32| {
                 f8(|i| {
                     if lit[i] {
@@ -157,6 +134,35 @@ impl Packet<'_, '_> {
             }
         }
         color
+    }
+
+    /// The lanes' base colour (`base_color`: a checker on the x-z grid, or
+    /// plain) and normal.
+    #[inline(always)]
+    fn surface_lanes(floor: &Floor<'_>, point: &V8, nv: &impl Fn(usize) -> Vec3) -> (V8, V8) {
+        let m = floor.material;
+        let base: [Vec3; LANES] = lanes(|i| match m.checker {
+            Some((other, size)) => {
+                let cell = floor_i64(point.x[i] / size) + floor_i64(point.z[i] / size);
+                if cell.rem_euclid(2) == 0 {
+                    m.color
+                } else {
+                    other
+                }
+            }
+            None => m.color,
+        });
+        let b = V8 {
+            x: f8(|i| base[i].x),
+            y: f8(|i| base[i].y),
+            z: f8(|i| base[i].z),
+        };
+        let nn = V8 {
+            x: f8(|i| nv(i).x),
+            y: f8(|i| nv(i).y),
+            z: f8(|i| nv(i).z),
+        };
+        (b, nn)
     }
 
     /// Per lane, whether the shadow ray from `start` towards light `li` is
