@@ -339,3 +339,54 @@ fn simulate_runs_hertz_contact() {
             .is_some_and(|e| e < 1e-9)
     );
 }
+
+#[test]
+fn samples_and_aa_flags_set_the_anti_aliasing_and_check_their_range() {
+    let dir = temp_dir("aa-flags");
+    let render = |name: &str, extra: &[&str]| {
+        let png = dir.join(format!("{name}.png"));
+        let mut args = vec![
+            "render",
+            "--width",
+            "64",
+            "--height",
+            "32",
+            "--time",
+            "0.3",
+            "--out",
+            png.to_str().expect("utf-8"),
+        ];
+        args.extend_from_slice(extra);
+        let o = run(&args);
+        assert_eq!(o.status.code(), Some(0), "{extra:?}: {}", stderr(&o));
+        std::fs::read(&png).expect("written")
+    };
+    let plain = render("plain", &[]);
+    // One sample is no anti-aliasing, whichever scheme.
+    assert_eq!(render("one", &["--samples", "1", "--aa", "uniform"]), plain);
+    let uniform = render("uniform", &["--samples", "4", "--aa", "uniform"]);
+    let adaptive = render("adaptive", &["--samples", "4", "--aa", "adaptive"]);
+    assert_ne!(uniform, plain, "4 samples everywhere change the picture");
+    assert_ne!(adaptive, plain, "4 samples at edges change the picture");
+    assert_ne!(adaptive, uniform, "only the edges are supersampled");
+    for (flags, want) in [
+        (
+            &["--samples", "0"][..],
+            "--samples 0: not allowed; allowed: 1..=64",
+        ),
+        (
+            &["--samples", "65"][..],
+            "--samples 65: not allowed; allowed: 1..=64",
+        ),
+        (&["--samples", "2.5"][..], "--samples"),
+        (&["--aa", "sideways"][..], "uniform"),
+    ] {
+        let out = dir.join("refused.png");
+        let mut args = vec!["render", "--out", out.to_str().expect("utf-8")];
+        args.extend_from_slice(flags);
+        let o = run(&args);
+        assert_eq!(o.status.code(), Some(2), "{flags:?}: {}", stderr(&o));
+        assert!(stderr(&o).contains(want), "{flags:?}: {}", stderr(&o));
+        assert!(!out.exists(), "nothing written for a refused flag");
+    }
+}

@@ -260,4 +260,19 @@ pub struct Common {
     /// Picture height (pixels), 16..=8192.
     #[arg(value_parser = whole("16..=8192"), long, global = true, allow_negative_numbers = true, value_name = "H")]
     pub height: Option<i64>,
+    /// Samples per pixel, 1..=64 (1 = no anti-aliasing).
+    #[arg(value_parser = whole("1..=64 (1 = no anti-aliasing)"), long, global = true, allow_negative_numbers = true, value_name = "N")]
+    pub samples: Option<i64>,
+    /// Anti-aliasing: the samples in every pixel, or only at edges.
+    #[arg(long, global = true, value_enum)]
+    pub aa: Option<AaFlag>,
+}
+
+/// Anti-aliasing schemes on the command line.
+#[derive(Debug, Clone, Copy, ValueEnum)]
+pub enum AaFlag {
+    /// Every pixel gets `samples` samples.
+    Uniform,
+    /// One sample, then `samples` where a neighbour differs (edges).
+    Adaptive,
 }

@@ -197,6 +197,16 @@ impl Job {
             }
             BenchCommand::RenderQuality(a) => {
                 let frames = quality_frames(&a)?;
+                let used: Vec<&str> = common
+                    .given_flags()
+                    .into_iter()
+                    .filter(|f| !matches!(*f, "--samples" | "--aa"))
+                    .collect();
+                ignored(
+                    common,
+                    &used,
+                    "bench render-quality compares its own sampling schemes",
+                );
                 check_plot(a.plot.as_deref(), common)?;
                 Self::BenchQuality {
                     config: asset()?,

@@ -2,7 +2,7 @@
 //! then the config is validated again, and an error names the flag that set the
 //! field with its valid range (or the field of the asset a flag made invalid).
 
-use super::args::{Common, ContactFlag, IntegratorFlag};
+use super::args::{AaFlag, Common, ContactFlag, IntegratorFlag};
 use crate::config::{Config, ConfigSource, ContactModel, FieldError};
 use crate::physics::Integrator;
 
@@ -63,6 +63,16 @@ impl Common {
             "--height",
             self.height.map(|v| v.to_string()),
         );
+        add(
+            "render.samples",
+            "--samples",
+            self.samples.map(|v| v.to_string()),
+        );
+        add(
+            "render.adaptive",
+            "--aa",
+            self.aa.map(|v| format!("{v:?}").to_lowercase()),
+        );
         out
     }
 
@@ -112,6 +122,12 @@ impl Common {
         }
         if let Some(v) = self.height {
             config.render.height = count(v, 0);
+        }
+        if let Some(v) = self.samples {
+            config.render.samples = count(v, 0);
+        }
+        if let Some(v) = self.aa {
+            config.render.adaptive = matches!(v, AaFlag::Adaptive);
         }
         let Err(errors) = config.validate() else {
             return Ok(());
