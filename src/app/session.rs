@@ -70,6 +70,8 @@ pub struct Session {
     /// Smoothed frames per second and trace milliseconds.
     fps: f64,
     trace_ms: f64,
+    /// The log's line every 2 s while running.
+    rate_log: rate_log::RateLog,
     hud: HudMode,
     error: Option<String>,
     /// Simulated seconds per wall-clock second: a power of two, 1/16..=4.
@@ -111,6 +113,7 @@ impl Session {
             last_frame: None,
             fps: 0.0,
             trace_ms: 0.0,
+            rate_log: rate_log::RateLog::default(),
             hud: HudMode::Status,
             error: None,
             rate: 1.0,
@@ -303,8 +306,14 @@ impl Session {
             if running && dt > 0.0 {
                 self.fps = smooth(self.fps, 1.0 / dt);
             }
+            if running && let Some(line) = self.rate_log.frame(now, ms) {
+                tracing::info!("{line}");
+            }
             self.trace_ms = smooth(self.trace_ms, ms);
             self.retrace = false;
+        }
+        if !running {
+            self.rate_log.pause();
         }
         self.last_frame = running.then_some(now);
     }
@@ -324,6 +333,7 @@ impl Session {
 
 mod dragging;
 mod editing;
+mod rate_log;
 mod status;
 
 #[cfg(test)]

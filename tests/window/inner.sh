@@ -50,6 +50,8 @@ d=$(differ run1 run2)
 xdotool key Up Down Right Left; sleep 1.0; shot run1; sleep 1.0; shot run2
 d=$(differ run1 run2)
 [ "$d" != "0" ] && ok "quick arrow presses keep it running ($d pixels changed)" || bad "quick arrow presses keep it running"
+line=$(grep -o "[0-9.]* fps, trace [0-9.]* ms" "$work/app.log" | tail -n 1)
+[ -n "$line" ] && ok "logs its frame rate while running ($line)" || bad "logs its frame rate while running"
 
 xdotool key space; sleep 1.5; shot pause1; sleep 1.0; shot pause2
 d=$(differ pause1 pause2)
