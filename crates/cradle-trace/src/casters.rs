@@ -74,14 +74,24 @@ pub(crate) struct Casters {
     len: f32,
     pieces: usize,
     /// Per light, per piece: the objects (in query order) that can block, with
-    /// their boxes eight at a time.
-    lists: Vec<Vec<WideBoxes>>,
+    /// their boxes eight at a time; with the object itself, and without.
+    lists: Vec<Vec<(WideBoxes, WideBoxes)>>,
 }
 
 impl Casters {
-    /// The casters of `shape` for each of `lights`; `None` for planes.
+    /// The casters of object `me` with `shape` for each of `lights`; `None`
+    /// for planes.
+    ///
+    /// Each list comes with and without the object itself. A shadow ray from a
+    /// point its ray met from outside cannot meet the object: it is traced only
+    /// where the light is on the outer side (`lambert > 0`), starting 2e-5 m off
+    /// the surface along the outward normal, so it runs away from the tangent
+    /// plane there, and a sphere or capped cylinder (convex) lies wholly on the
+    /// other side of it, 2e-5 m (a hundred times the f32 rounding at a metre)
+    /// away at least. A ray that met it from inside (a reflection starting
+    /// within a touching ball) turns the normal inwards: then it can.
     pub(crate) fn new(
-        shape: &Shape,
+        (me, shape): (usize, &Shape),
         lights: &[Light],
         bounded: &[(usize, Aabb)],
         bvh: Option<&Bvh>,
@@ -132,15 +142,20 @@ impl Casters {
                 .map(|l| {
                     boxes
                         .iter()
-                        .map(|&b| wide(casters(b, l, bounded, bvh)))
+                        .map(|&b| {
+                            let all = casters(b, l, bounded, bvh);
+                            let others = all.iter().copied().filter(|&i| i != me).collect();
+                            (wide(all), wide(others))
+                        })
                         .collect()
                 })
                 .collect(),
         })
     }
 
-    /// The casters towards light `light` of a shadow ray starting at `at`.
-    pub(crate) fn at(&self, light: usize, at: Vec3) -> Option<&WideBoxes> {
+    /// The casters towards light `light` of a shadow ray starting at `at`, from
+    /// a point met from `outside` (then without the object itself).
+    pub(crate) fn at(&self, light: usize, at: Vec3, outside: bool) -> Option<&WideBoxes> {
         let piece = if self.pieces == 1 {
             0
         } else {
@@ -148,6 +163,7 @@ impl Casters {
             // Clamped to the ends (the caps' starts lie just beyond them); NaN to 0.
             (s.max(0.0) as usize).min(self.pieces - 1)
         };
-        Some(&self.lists.get(light)?[piece])
+        let (all, others) = &self.lists.get(light)?[piece];
+        Some(if outside { others } else { all })
     }
 }

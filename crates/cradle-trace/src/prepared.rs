@@ -20,6 +20,22 @@ pub struct Hit {
     pub object: usize,
     /// Unit normal, turned to face the ray.
     pub normal: Vec3,
+    /// Whether the ray met the surface from outside (the normal was not turned).
+    pub outside: bool,
+}
+
+impl Hit {
+    /// The hit at `t` on `object`, whose outward normal there is `n`.
+    #[must_use]
+    pub(crate) fn facing(ray: &Ray, t: f32, object: usize, n: Vec3) -> Self {
+        let inside = n.dot(ray.dir) > 0.0;
+        Self {
+            t,
+            object,
+            normal: if inside { -n } else { n },
+            outside: !inside,
+        }
+    }
 }
 
 /// Bounds of a shape; `None` for unbounded planes.
@@ -171,11 +187,7 @@ impl<'a> Prepared<'a> {
                 best = Some((t, i, n));
             }
         }
-        best.map(|(t, object, n)| Hit {
-            t,
-            object,
-            normal: if n.dot(ray.dir) > 0.0 { -n } else { n },
-        })
+        best.map(|(t, object, n)| Hit::facing(ray, t, object, n))
     }
 
     /// The nearest hit before `t_max`.
@@ -207,11 +219,7 @@ impl<'a> Prepared<'a> {
                 }
             }
         }
-        best.map(|(t, object, n)| Hit {
-            t,
-            object,
-            normal: if n.dot(ray.dir) > 0.0 { -n } else { n },
-        })
+        best.map(|(t, object, n)| Hit::facing(ray, t, object, n))
     }
 
     /// [`Self::closest`] through the hierarchy: the same hit, since among equally
@@ -245,11 +253,8 @@ impl<'a> Prepared<'a> {
                 false
             });
         }
-        best.get().map(|(t, _, object, n)| Hit {
-            t,
-            object,
-            normal: if n.dot(ray.dir) > 0.0 { -n } else { n },
-        })
+        best.get()
+            .map(|(t, _, object, n)| Hit::facing(ray, t, object, n))
     }
 
     /// Turns the hierarchy on or off for secondary rays (off: each tests every
@@ -294,7 +299,10 @@ impl<'a> Prepared<'a> {
             scene
                 .objects
                 .iter()
-                .map(|o| Casters::new(&o.shape, &scene.lights, &self.bounded, bvh.as_ref()))
+                .enumerate()
+                .map(|(i, o)| {
+                    Casters::new((i, &o.shape), &scene.lights, &self.bounded, bvh.as_ref())
+                })
                 .collect()
         });
         self
@@ -304,11 +312,17 @@ impl<'a> Prepared<'a> {
     /// object `from`: with shadow culling, from a plane only the objects whose
     /// shadow can fall there are tested. The same answer either way.
     #[must_use]
-    pub fn occluded_towards(&self, from: usize, light: usize, ray: &Ray, t_max: f32) -> bool {
+    pub fn occluded_towards(
+        &self,
+        (from, outside): (usize, bool),
+        light: usize,
+        ray: &Ray,
+        t_max: f32,
+    ) -> bool {
         if let Some(list) = self
             .casters
             .as_ref()
-            .and_then(|c| c.get(from)?.as_ref()?.at(light, ray.origin))
+            .and_then(|c| c.get(from)?.as_ref()?.at(light, ray.origin, outside))
         {
             if self.occluded_by_planes(ray, t_max) {
                 return true;

@@ -146,7 +146,7 @@ fn shade(
             origin: start,
             dir: to_light,
         };
-        if blocked(p, &shadow, dist, (hit.object, li), tile, motion) {
+        if blocked(p, &shadow, dist, (hit, li), tile, motion) {
             continue;
         }
         color += base * light_color * lambert;
@@ -177,21 +177,21 @@ fn shade(
     color
 }
 
-/// Whether the shadow ray from a point of `object` towards light `li` is blocked
+/// Whether the shadow ray from a point of `hit` towards light `li` is blocked
 /// before `dist`: a tile no caster can shadow (`tile`) tests only the planes.
 pub(crate) fn blocked(
     p: &Prepared<'_>,
     shadow: &Ray,
     dist: f32,
-    (object, li): (usize, usize),
+    (hit, li): (Hit, usize),
     tile: Option<(&Tiles, u32, u32)>,
     motion: &mut Motion,
 ) -> bool {
     motion.segment(shadow, dist);
-    if tile.is_some_and(|(t, x, y)| t.shadow_clear(object, li, x, y)) {
+    if tile.is_some_and(|(t, x, y)| t.shadow_clear(hit.object, li, x, y)) {
         p.occluded_by_planes(shadow, dist)
     } else {
-        p.occluded_towards(object, li, shadow, dist)
+        p.occluded_towards((hit.object, hit.outside), li, shadow, dist)
     }
 }
 

@@ -218,11 +218,8 @@ impl Prepared<'_> {
                 false
             });
         }
-        best.get().map(|(t, object, n)| Hit {
-            t,
-            object,
-            normal: if n.dot(ray.dir) > 0.0 { -n } else { n },
-        })
+        best.get()
+            .map(|(t, object, n)| Hit::facing(ray, t, object, n))
     }
 }
 
