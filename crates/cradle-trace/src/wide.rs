@@ -80,7 +80,7 @@ fn lanes_avx2(c: &Chunk, o: Vec3, inv: Vec3, t_max: f32) -> u8 {
     let (o, inv) = (o.to_array(), inv.to_array());
     let t = |v: &[f32; W], a: usize| {
         _mm256_mul_ps(
-            _mm256_sub_ps(load(v), _mm256_set1_ps(o[a])),
+            _mm256_sub_ps(super::simd::load8(v), _mm256_set1_ps(o[a])),
             _mm256_set1_ps(inv[a]),
         )
     };
@@ -107,17 +107,6 @@ fn lanes_avx2(c: &Chunk, o: Vec3, inv: Vec3, t_max: f32) -> u8 {
     );
     let hit = _mm256_cmp_ps::<_CMP_LE_OQ>(near, far);
     (_mm256_movemask_ps(hit) as u8) & c.used
-}
-
-/// The eight floats of `v` in an AVX register.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-fn load(v: &[f32; W]) -> std::arch::x86_64::__m256 {
-    // SAFETY: an unaligned load of exactly the eight floats `v` holds.
-    #[expect(unsafe_code, reason = "a load from a reference, in bounds by its type")]
-    unsafe {
-        std::arch::x86_64::_mm256_loadu_ps(v.as_ptr())
-    }
 }
 
 impl WideBoxes {
@@ -225,7 +214,7 @@ impl Prepared<'_> {
 
 #[cfg(test)]
 mod tests {
-    use super::{Chunk, W, WideBoxes, lanes};
+    use super::{W, WideBoxes, lanes};
     use crate::geometry::{Aabb, Ray};
     use glam::Vec3;
 
@@ -247,7 +236,6 @@ mod tests {
                 assert_eq!(got, want, "AVX2, {ray:?}");
             }
         }
-        let _: &Chunk = &wide.chunks[0];
     }
 
     #[test]

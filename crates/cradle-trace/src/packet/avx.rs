@@ -10,24 +10,14 @@
 use super::{F8, LANES, V8};
 use crate::geometry::{Aabb, Cylinder, T_MIN};
 use crate::shadow::{GridView, Lookup};
+use crate::simd::load8 as load;
 use glam::Vec3;
 use std::arch::x86_64::{
     __m256, _CMP_GE_OQ, _CMP_GT_OQ, _CMP_LE_OQ, _CMP_LT_OQ, _CMP_NLT_UQ, _mm256_add_ps,
     _mm256_and_ps, _mm256_andnot_ps, _mm256_blendv_ps, _mm256_cmp_ps, _mm256_cvttps_epi32,
-    _mm256_div_ps, _mm256_loadu_ps, _mm256_max_ps, _mm256_min_ps, _mm256_movemask_ps,
-    _mm256_mul_ps, _mm256_or_ps, _mm256_set1_ps, _mm256_sqrt_ps, _mm256_storeu_si256,
-    _mm256_sub_ps, _mm256_xor_ps,
+    _mm256_div_ps, _mm256_max_ps, _mm256_min_ps, _mm256_movemask_ps, _mm256_mul_ps, _mm256_or_ps,
+    _mm256_set1_ps, _mm256_sqrt_ps, _mm256_storeu_si256, _mm256_sub_ps, _mm256_xor_ps,
 };
-
-/// The eight floats of `v`.
-#[target_feature(enable = "avx2")]
-fn load(v: &F8) -> __m256 {
-    // SAFETY: an unaligned load of exactly the eight floats `v` holds.
-    #[expect(unsafe_code, reason = "a load from a reference, in bounds by its type")]
-    unsafe {
-        _mm256_loadu_ps(v.as_ptr())
-    }
-}
 
 /// Three lane registers: a vector per lane.
 #[derive(Clone, Copy)]
