@@ -105,16 +105,7 @@ impl Incremental {
                 .par_chunks_exact_mut(stride)
                 .zip(self.masks.par_chunks_exact_mut(img.width as usize))
                 .enumerate()
-                .map(|(y, (row, masks))| {
-                    let mut n = 0;
-                    for (x, (px, m)) in row.chunks_exact_mut(4).zip(masks).enumerate() {
-                        if *m & moved != 0 {
-                            *m = frame.put(x as u32, y as u32, px);
-                            n += 1;
-                        }
-                    }
-                    n
-                })
+                .map(|(y, (row, masks))| frame.retrace_row(y as u32, row, masks, moved))
                 .sum();
         } else {
             let (img, masks) = frame.image(true);

@@ -21,12 +21,14 @@
 
 use super::camera::CameraRays;
 use super::color::srgb8_lanes;
-use super::geometry::T_MIN;
+use super::geometry::{Ray, T_MIN};
+use super::motion::{Cells, MotionGrid};
 use super::prepared::Prepared;
 use super::scene::{Material, Shape};
 use super::shade::SURFACE_OFFSET;
 use super::tiles::Tiles;
 use glam::Vec3;
+use std::cell::Cell;
 
 /// Pixels per packet.
 pub const LANES: usize = 8;
@@ -113,9 +115,25 @@ pub(crate) struct Packet<'a, 'p> {
     pub(crate) cam: &'a CameraRays,
     pub(crate) tiles: &'a Tiles,
     pub(crate) bound: f32,
+    /// The motion grid of a tracked frame: each lane notes the cells its rays
+    /// pass through, as the scalar path does.
+    pub(crate) motion: Option<MotionGrid>,
+    /// The cells each lane's rays passed through (with `motion`).
+    pub(crate) marks: Cell<[Cells; LANES]>,
 }
 
 impl Packet<'_, '_> {
+    /// Notes the cells the segment of `ray` up to `t` passes through, for lane
+    /// `i` (what `Motion::segment` notes for a pixel).
+    #[inline]
+    pub(crate) fn note(&self, i: usize, ray: &Ray, t: f32) {
+        if let Some(g) = &self.motion {
+            let mut m = self.marks.get();
+            m[i] |= g.segment(ray, t);
+            self.marks.set(m);
+        }
+    }
+
     /// Traces pixels `x0..x0 + 8` of row `y` at their centres into `out` (8 RGBA
     /// pixels) where the nearest hit is `floor` (`others`: the other objects that
     /// can be met there): a bit per lane written. The other lanes (a ray that
@@ -129,6 +147,7 @@ impl Packet<'_, '_> {
         y: u32,
         out: &mut [u8],
     ) -> u8 {
+        self.marks.set([0; LANES]);
         #[cfg(target_arch = "x86_64")]
         if super::simd::avx2() {
             // SAFETY: the CPU has AVX2, checked just above.
@@ -202,6 +221,15 @@ impl Packet<'_, '_> {
             return 0;
         }
         let on_floor: [bool; LANES] = std::array::from_fn(|i| !front[i]);
+        if self.motion.is_some() {
+            for (i, _) in on_floor.iter().enumerate().filter(|(_, f)| **f) {
+                let ray = Ray {
+                    origin: c.origin,
+                    dir: d.lane(i),
+                };
+                self.note(i, &ray, t[i]);
+            }
+        }
         // closest_among: the normal faces the ray.
         let n = f8(|i| {
             if (floor.normal.x * d.x[i]) + (floor.normal.y * d.y[i]) + (floor.normal.z * d.z[i])

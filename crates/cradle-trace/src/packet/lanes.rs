@@ -84,6 +84,18 @@ impl Packet<'_, '_> {
             });
             // Lanes off the floor are the scalar path's: no shadow rays for them.
             let want = f8(|i| if on_floor[i] { lambert[i] } else { 0.0 });
+            if self.motion.is_some() {
+                // `blocked` notes each shadow ray traced (lambert not <= 0).
+                let traced =
+                    |i: &usize| on_floor[*i] && (lambert[*i] > 0.0 || lambert[*i].is_nan());
+                for i in (0..LANES).filter(traced) {
+                    let shadow = Ray {
+                        origin: start.lane(i),
+                        dir: to_light.lane(i),
+                    };
+                    self.note(i, &shadow, dist[i]);
+                }
+            }
             let blocked = self.shadows(floor, (x0, y, li), start, &to_light, &dist, &want);
             // Skipped where lambert <= 0 or the light is blocked; else
             // color += base * light_color * lambert.
@@ -277,16 +289,21 @@ impl Packet<'_, '_> {
             missed = met.map(|m| !m);
         }
         let bg = self.p.scene.background;
-        let mut motion = Motion::new(None);
         let lanes: [Vec3; LANES] = lanes(|i| {
-            if missed[i] || !on_floor[i] {
+            if !on_floor[i] {
                 return bg;
             }
             let mirror = Ray {
                 origin: start.lane(i),
                 dir: dir.lane(i),
             };
-            reflect(
+            if missed[i] {
+                // `reflect` would find nothing and note the ray to infinity.
+                self.note(i, &mirror, f32::INFINITY);
+                return bg;
+            }
+            let mut motion = Motion::new(self.motion);
+            let c = reflect(
                 self.p,
                 &mirror,
                 floor.object,
@@ -295,7 +312,13 @@ impl Packet<'_, '_> {
                 self.bound,
                 &mut motion,
                 tile,
-            )
+            );
+            if motion.mask != 0 {
+                let mut m = self.marks.get();
+                m[i] |= motion.mask;
+                self.marks.set(m);
+            }
+            c
         });
         V8 {
             x: f8(|i| lanes[i].x),
