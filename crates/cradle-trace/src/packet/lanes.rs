@@ -84,18 +84,7 @@ impl Packet<'_, '_> {
             });
             // Lanes off the floor are the scalar path's: no shadow rays for them.
             let want = f8(|i| if on_floor[i] { lambert[i] } else { 0.0 });
-            if self.motion.is_some() {
-                // `blocked` notes each shadow ray traced (lambert not <= 0).
-                let traced =
-                    |i: &usize| on_floor[*i] && (lambert[*i] > 0.0 || lambert[*i].is_nan());
-                for i in (0..LANES).filter(traced) {
-                    let shadow = Ray {
-                        origin: start.lane(i),
-                        dir: to_light.lane(i),
-                    };
-                    self.note(i, &shadow, dist[i]);
-                }
-            }
+            self.note_shadows(&want, start, &to_light, &dist);
             let blocked = self.shadows(floor, (x0, y, li), start, &to_light, &dist, &want);
             // Skipped where lambert <= 0 or the light is blocked; else
             // color += base * light_color * lambert.
@@ -146,6 +135,23 @@ impl Packet<'_, '_> {
             }
         }
         color
+    }
+
+    /// In a tracked frame, notes the shadow rays the lanes trace (`blocked`
+    /// notes each one whose lambert, here `lit`, is not <= 0; lanes off the floor
+    /// have 0).
+    #[inline(always)]
+    fn note_shadows(&self, lit: &F8, start: &V8, to_light: &V8, dist: &F8) {
+        if self.motion.is_none() {
+            return;
+        }
+        for i in (0..LANES).filter(|&i| lit[i] > 0.0 || lit[i].is_nan()) {
+            let shadow = Ray {
+                origin: start.lane(i),
+                dir: to_light.lane(i),
+            };
+            self.note(i, &shadow, dist[i]);
+        }
     }
 
     /// The lanes' base colour (`base_color`: a checker on the x-z grid, or
