@@ -147,7 +147,9 @@ impl Packet<'_, '_> {
         y: u32,
         out: &mut [u8],
     ) -> u8 {
-        self.marks.set([0; LANES]);
+        if self.motion.is_some() {
+            self.marks.set([0; LANES]);
+        }
         #[cfg(target_arch = "x86_64")]
         if super::simd::avx2() {
             // SAFETY: the CPU has AVX2, checked just above.

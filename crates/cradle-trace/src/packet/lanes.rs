@@ -84,7 +84,9 @@ impl Packet<'_, '_> {
             });
             // Lanes off the floor are the scalar path's: no shadow rays for them.
             let want = f8(|i| if on_floor[i] { lambert[i] } else { 0.0 });
-            self.note_shadows(&want, start, &to_light, &dist);
+            if self.motion.is_some() {
+                self.note_shadows(&want, start, &to_light, &dist);
+            }
             let blocked = self.shadows(floor, (x0, y, li), start, &to_light, &dist, &want);
             // Skipped where lambert <= 0 or the light is blocked; else
             // color += base * light_color * lambert.
@@ -140,11 +142,8 @@ impl Packet<'_, '_> {
     /// In a tracked frame, notes the shadow rays the lanes trace (`blocked`
     /// notes each one whose lambert, here `lit`, is not <= 0; lanes off the floor
     /// have 0).
-    #[inline(always)]
+    #[inline(never)]
     fn note_shadows(&self, lit: &F8, start: &V8, to_light: &V8, dist: &F8) {
-        if self.motion.is_none() {
-            return;
-        }
         for i in (0..LANES).filter(|&i| lit[i] > 0.0 || lit[i].is_nan()) {
             let shadow = Ray {
                 origin: start.lane(i),
@@ -319,7 +318,7 @@ impl Packet<'_, '_> {
                 &mut motion,
                 tile,
             );
-            if motion.mask != 0 {
+            if self.motion.is_some() && motion.mask != 0 {
                 let mut m = self.marks.get();
                 m[i] |= motion.mask;
                 self.marks.set(m);
