@@ -123,6 +123,19 @@ pub(crate) struct Packet<'a, 'p> {
 }
 
 impl Packet<'_, '_> {
+    /// Traces pixels `x..x + 8` of row `y` into `span` (8 RGBA pixels) where
+    /// the floor is the one plane their tile offers and the nearest hit
+    /// ([`Self::floor`]): the lanes written, and in a tracked frame their cells.
+    #[inline]
+    pub(crate) fn run(&self, x: u32, y: u32, span: &mut [u8]) -> (u8, [Cells; LANES]) {
+        let done = match self.tiles.plane_among(self.p, x, y, LANES as u32) {
+            Some((plane, others)) => Floor::of(self.p, self.cam, plane)
+                .map_or(0, |f| self.floor(&f, others.as_slice(), x, y, span)),
+            None => 0,
+        };
+        (done, self.marks.get())
+    }
+
     /// Notes the cells the segment of `ray` up to `t` passes through, for lane
     /// `i` (what `Motion::segment` notes for a pixel).
     #[inline]

@@ -7,7 +7,7 @@ use super::camera::CameraRays;
 use super::color::{Image, srgb8};
 use super::geometry::Aabb;
 use super::motion::{Cells, Motion, MotionGrid};
-use super::packet::{Floor, LANES, Packet};
+use super::packet::{LANES, Packet};
 use super::prepared::Prepared;
 use super::sampling::sample_offsets;
 use super::scene::Scene;
@@ -115,21 +115,24 @@ impl<'a> Frame<'a> {
         self.put_with(x, y, px, &self.offsets)
     }
 
+    /// The packet tracer for samples at `offsets`: centre samples with tiles.
+    fn packets(&self, offsets: &[(f32, f32)]) -> Option<Packet<'_, 'a>> {
+        let tiles = self.tiles.as_ref().filter(|_| offsets == [(0.5, 0.5)])?;
+        Some(Packet {
+            p: &self.prepared,
+            cam: &self.camera,
+            tiles,
+            bound: self.bound,
+            motion: self.motion,
+            marks: std::cell::Cell::new([0; LANES]),
+        })
+    }
+
     /// Traces a whole row with `offsets`; returns each pixel's motion cells.
-    /// Centre samples of untracked frames go in packets where the tile allows.
+    /// Centre samples go in packets where the tile allows.
     fn row_with(&self, y: u32, out: &mut [u8], offsets: &[(f32, f32)]) -> Vec<Cells> {
         let mut cells = vec![0; self.width as usize];
-        let packets = match &self.tiles {
-            Some(tiles) if offsets == [(0.5, 0.5)] => Some(Packet {
-                p: &self.prepared,
-                cam: &self.camera,
-                tiles,
-                bound: self.bound,
-                motion: self.motion,
-                marks: std::cell::Cell::new([0; LANES]),
-            }),
-            _ => None,
-        };
+        let packets = self.packets(offsets);
         let mut x = 0;
         while x < self.width {
             let lanes = LANES as u32;
@@ -137,12 +140,7 @@ impl<'a> Frame<'a> {
                 && x + lanes <= self.width
             {
                 let span = &mut out[x as usize * 4..(x + lanes) as usize * 4];
-                let done = match pk.tiles.plane_among(pk.p, x, y, lanes) {
-                    Some((plane, others)) => Floor::of(pk.p, pk.cam, plane)
-                        .map_or(0, |f| pk.floor(&f, others.as_slice(), x, y, span)),
-                    None => 0,
-                };
-                let marks = pk.marks.get();
+                let (done, marks) = pk.run(x, y, span);
                 for i in x..x + lanes {
                     if done & (1 << (i - x)) != 0 {
                         cells[i as usize] = marks[(i - x) as usize];
@@ -172,7 +170,7 @@ impl<'a> Frame<'a> {
         masks: &mut [Cells],
         moved: Cells,
     ) -> usize {
-        let packets = self.tiles.as_ref().filter(|_| self.offsets == [(0.5, 0.5)]);
+        let packets = self.packets(&self.offsets);
         let mut traced = 0;
         let mut x = 0;
         while x < self.width {
@@ -183,24 +181,10 @@ impl<'a> Frame<'a> {
                 x = end;
                 continue;
             }
-            if let Some(tiles) = packets
+            if let Some(pk) = &packets
                 && end - x == lanes
             {
-                let pk = Packet {
-                    p: &self.prepared,
-                    cam: &self.camera,
-                    tiles,
-                    bound: self.bound,
-                    motion: self.motion,
-                    marks: std::cell::Cell::new([0; LANES]),
-                };
-                let span = &mut row[x as usize * 4..end as usize * 4];
-                let done = match tiles.plane_among(pk.p, x, y, lanes) {
-                    Some((plane, others)) => Floor::of(pk.p, pk.cam, plane)
-                        .map_or(0, |f| pk.floor(&f, others.as_slice(), x, y, span)),
-                    None => 0,
-                };
-                let marks = pk.marks.get();
+                let (done, marks) = pk.run(x, y, &mut row[x as usize * 4..end as usize * 4]);
                 for i in x..end {
                     let k = i as usize;
                     if done & (1 << (i - x)) != 0 {
@@ -333,82 +317,5 @@ pub fn pool(threads: usize) -> Result<rayon::ThreadPool, rayon::ThreadPoolBuildE
 }
 
 #[cfg(test)]
-mod tests {
-    use super::{Frame, RenderOptions};
-    use crate::scene::{Camera, Light, Material, Object, Scene, Shape};
-    use glam::Vec3;
-
-    #[test]
-    fn packets_note_the_same_motion_cells_as_the_scalar_path() {
-        // A reflective, checkered floor, a moving mirror ball and a moving
-        // rod over it, two point lights: packets take most of the floor, and
-        // their shadow and mirror rays cross the motion box.
-        let floor = Material {
-            color: Vec3::new(0.3, 0.2, 0.1),
-            specular: Some(20.0),
-            reflective: 0.1,
-            checker: Some((Vec3::new(0.2, 0.1, 0.1), 0.05)),
-        };
-        let steel = Material {
-            color: Vec3::splat(0.5),
-            specular: Some(100.0),
-            reflective: 0.6,
-            checker: None,
-        };
-        let objects = vec![
-            Object {
-                shape: Shape::Plane {
-                    point: Vec3::ZERO,
-                    normal: Vec3::Y,
-                },
-                material: floor,
-                moving: false,
-            },
-            Object {
-                shape: Shape::Sphere {
-                    centre: Vec3::new(0.0, 0.1, 0.0),
-                    radius: 0.05,
-                },
-                material: steel,
-                moving: true,
-            },
-            Object {
-                shape: Shape::Cylinder {
-                    a: Vec3::new(-0.2, 0.2, 0.05),
-                    b: Vec3::new(0.2, 0.22, 0.05),
-                    radius: 0.01,
-                },
-                material: steel,
-                moving: true,
-            },
-        ];
-        let light = |x: f32, y: f32| Light::Point {
-            position: Vec3::new(x, y, 0.6),
-            color: Vec3::splat(0.7),
-        };
-        let scene = Scene {
-            objects,
-            lights: vec![light(-0.5, 0.8), light(0.6, 0.5)],
-            camera: Camera {
-                position: Vec3::new(0.0, 0.35, 0.7),
-                look_at: Vec3::new(0.0, 0.1, 0.0),
-                fov_deg: 40.0,
-            },
-            background: Vec3::new(0.05, 0.06, 0.08),
-            size: (97, 61),
-            max_depth: 3,
-            samples: 1,
-            adaptive: None,
-            motion_bounds: Some((Vec3::new(-0.3, 0.0, -0.1), Vec3::new(0.3, 0.3, 0.1))),
-        };
-        let (fast_img, fast) = Frame::new(&scene, RenderOptions::FAST, true).image(false);
-        let (full_img, full) = Frame::new(&scene, RenderOptions::FULL, true).image(false);
-        assert!(fast_img == full_img, "the same picture");
-        let differing = fast.iter().zip(&full).filter(|(a, b)| a != b).count();
-        assert_eq!(differing, 0, "pixels whose motion cells differ");
-        assert!(
-            full.iter().filter(|&&m| m != 0).count() > 1000,
-            "the motion box is seen"
-        );
-    }
-}
+#[path = "render_tests.rs"]
+mod tests;
