@@ -52,8 +52,30 @@ pub fn camera(cam: &CameraConfig) -> trace::Camera {
 /// the middle 95% of the picture. A camera that sees the frame already, or looks
 /// straight down, is left as it is. A row too long to read that way is looked
 /// at along its length instead ([`super::long_row`]).
+///
+/// A pure function of `config`, remembered for the last config on each thread:
+/// the window asks for it at every move of a drag that turns the view, and the
+/// search for a long row's view costs milliseconds.
 #[must_use]
 pub fn fitted_camera(config: &Config) -> CameraConfig {
+    thread_local! {
+        static LAST: std::cell::RefCell<Option<(Config, CameraConfig)>> =
+            const { std::cell::RefCell::new(None) };
+    }
+    if let Some(cam) = LAST.with_borrow(|last| {
+        last.as_ref()
+            .filter(|(c, _)| c == config)
+            .map(|(_, cam)| cam.clone())
+    }) {
+        return cam;
+    }
+    let cam = fit(config);
+    LAST.set(Some((config.clone(), cam.clone())));
+    cam
+}
+
+/// [`fitted_camera`], worked out.
+fn fit(config: &Config) -> CameraConfig {
     let mut cam = config.camera.clone();
     let (w, h) = (config.render.width, config.render.height);
     let corners = frame_corners(config);
