@@ -14,17 +14,29 @@ ok() { echo "ok - $1"; pass=$((pass + 1)); }
 bad() { echo "FAIL - $1"; fail=$((fail + 1)); }
 shot() { import -window root "$work/$1.png"; }
 differ() { compare -metric AE "$work/$1.png" "$work/$2.png" null: 2>&1 | cut -d' ' -f1; }
+# The app's window id, once it is mapped (empty after 30 s).
+find_window() {
+  for _ in $(seq 1 150); do
+    xdotool search --name "Newton's cradle" 2>/dev/null | head -n 1 | grep . && return
+    sleep 0.2
+  done
+}
+# Sets code to the exit code of the app ($pid) within 5 s (empty while it still
+# runs); not in a subshell, which could not wait for it.
+wait_exit() {
+  code=""
+  for _ in $(seq 1 50); do
+    if ! kill -0 "$pid" 2>/dev/null; then wait "$pid"; code=$?; return; fi
+    sleep 0.1
+  done
+}
 
 cp "$(dirname "$bin")/../../assets/cradle.ron" "$work/cradle.ron"
 cd "$work"
 "$bin" --config "$work/cradle.ron" --width 480 --height 240 > "$work/app.log" 2>&1 &
 pid=$!
 
-wid=""
-for _ in $(seq 1 150); do
-  wid=$(xdotool search --name "Newton's cradle" 2>/dev/null | head -n 1) && [ -n "$wid" ] && break
-  sleep 0.2
-done
+wid=$(find_window)
 if [ -z "$wid" ]; then bad "window appears"; cat "$work/app.log"; echo "0 passed, 1 failed"; exit 1; fi
 ok "window appears"
 xdotool windowfocus --sync "$wid" 2>/dev/null || xdotool windowfocus "$wid"
@@ -98,29 +110,17 @@ xdotool key s s s; sleep 1.5
   && ok "three quick S presses give three more files" || bad "three quick S presses give three more files"
 
 xdotool key Escape
-code=""
-for _ in $(seq 1 50); do
-  if ! kill -0 "$pid" 2>/dev/null; then wait "$pid"; code=$?; break; fi
-  sleep 0.1
-done
+wait_exit
 [ "$code" = "0" ] && ok "Escape exits with 0" || bad "Escape exits with 0 (got '${code:-still running}')"
 grep -q "panicked" "$work/app.log" && bad "no panic in the log" || ok "no panic in the log"
 
 # Destroyed by another client (XDestroyWindow): exits cleanly, no panic.
 "$bin" --config "$(dirname "$bin")/../../assets/cradle.ron" --width 160 --height 80 > "$work/destroy.log" 2>&1 &
 pid=$!
-wid=""
-for _ in $(seq 1 150); do
-  wid=$(xdotool search --name "Newton's cradle" 2>/dev/null | head -n 1) && [ -n "$wid" ] && break
-  sleep 0.2
-done
+wid=$(find_window)
 sleep 1; xdotool key --window "$wid" space; sleep 0.5
 [ -n "$wid" ] && python3 "$(dirname "$0")/destroy_window.py" "$wid"
-code=""
-for _ in $(seq 1 50); do
-  if ! kill -0 "$pid" 2>/dev/null; then wait "$pid"; code=$?; break; fi
-  sleep 0.1
-done
+wait_exit
 [ "$code" = "0" ] && ! grep -q panicked "$work/destroy.log" \
   && ok "destroyed from outside: exits 0" || { bad "destroyed from outside: exits 0 (got '${code:-still running}')"; cat "$work/destroy.log"; }
 
