@@ -19,8 +19,15 @@ pub struct Summary {
     pub energy_initial: f64,
     /// Energy at the last sample (J).
     pub energy_final: f64,
-    /// Largest |E(t) - E(0)| / E(0) over the samples.
+    /// Largest |E(t) - E(0)| / E(0) over the samples; with dissipation, of the
+    /// energy balance |E(t) + lost(t) - E(0)| / E(0).
     pub max_energy_rel_error: f64,
+    /// With dissipation: energy lost in viscoelastic contacts by the end (J).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lost_contact: Option<f64>,
+    /// With dissipation: energy lost to air drag by the end (J).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lost_drag: Option<f64>,
     /// Wall-clock seconds spent.
     pub wall_seconds: f64,
 }
@@ -41,6 +48,14 @@ struct Params<'a> {
     dt: f64,
     restitution: f64,
     density: f64,
+    /// The dissipation keys, only when the cradle loses energy (so elastic runs
+    /// print what they always printed).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    dissipation: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    air_density: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    drag_coefficient: Option<f64>,
 }
 
 /// One sample line.
@@ -51,6 +66,9 @@ struct Sample<'a> {
     omega: &'a [f64],
     energy: f64,
     collisions: u64,
+    /// With dissipation: energy lost so far in contacts and to drag (J).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    lost: Option<[f64; 2]>,
 }
 
 /// The first and last lines: `{"params":{..}}` and `{"summary":{..}}`.
@@ -139,6 +157,7 @@ pub fn simulate(
 ) -> io::Result<Summary> {
     let start = Instant::now();
     let p = config.cradle_params();
+    let damped = p.dissipative();
     let params = Params {
         balls: p.balls,
         radius: p.radius,
@@ -153,11 +172,15 @@ pub fn simulate(
         dt: config.physics.dt,
         restitution: p.restitution,
         density: config.cradle.density,
+        dissipation: damped.then_some(config.contact.dissipation),
+        air_density: damped.then_some(config.cradle.air_density),
+        drag_coefficient: damped.then_some(config.cradle.drag_coefficient),
     };
     line(out, &Framing::Params(params))?;
     let mut cradle = config.build_cradle();
     let e0 = cradle.initial_energy();
     let (mut max_err, mut e_last, mut collisions) = (0.0_f64, e0, 0);
+    let mut lost = [0.0; 2];
     let mut feedback = Feedback::new(start, duration);
     for n in 0..=sample_count(duration, every) {
         let t = n as f64 * every;
@@ -172,12 +195,14 @@ pub fn simulate(
         max_err = max_err.max(cradle.energy_rel_error(&s).abs());
         e_last = e;
         collisions = s.collisions;
+        lost = s.lost;
         let sample = Sample {
             t,
             theta: &s.theta,
             omega: &s.omega,
             energy: e,
             collisions: s.collisions,
+            lost: damped.then_some(s.lost),
         };
         line(out, &sample)?;
         feedback.after(t, out)?;
@@ -188,6 +213,8 @@ pub fn simulate(
         energy_initial: e0,
         energy_final: e_last,
         max_energy_rel_error: max_err,
+        lost_contact: damped.then_some(lost[0]),
+        lost_drag: damped.then_some(lost[1]),
         wall_seconds: start.elapsed().as_secs_f64(),
     };
     line(out, &Framing::Summary(&summary))?;

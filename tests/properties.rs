@@ -118,7 +118,7 @@ proptest! {
         wb in -20.0f64..20.0,
         e in 0.0f64..=1.0,
     ) {
-        let p = CradleParams { balls: 2, radius: 0.02, mass: 0.26, length: 0.02 * len_ratio, gap, gravity: 9.81, restitution: e, hertz: None };
+        let p = CradleParams { balls: 2, radius: 0.02, mass: 0.26, length: 0.02 * len_ratio, gap, gravity: 9.81, restitution: e, hertz: None, dissipation: 0.0, drag: 0.0 };
         // Running the motion backwards turns a separating pair into an approaching one.
         let sign = contact::closing_speed(&p, (ta, wa), (ta + dt, wb)).signum();
         let (wa, wb) = (-sign * wa, -sign * wb);

@@ -1,6 +1,7 @@
 //! The stability stress suite at the size `cargo test` affords (a few CPU seconds):
 //! 1e6 ideal impacts, 179.9 degree lifts with N = 1, 2 and 200, gaps, restitution
-//! 0 and 0.5, tiny and huge cradles, Hertz contact. Each scenario's limits are in
+//! 0 and 0.5, tiny and huge cradles, Hertz contact, viscoelastic contact with air
+//! drag. Each scenario's limits are in
 //! `src/bench/stress.rs`; `newtons-cradle bench stress` runs them longer.
 
 use newtons_cradle::bench::stress::{run, scenarios};

@@ -58,6 +58,8 @@ impl Plan {
             gap: 0.0,
             restitution: 1.0,
             hertz: None,
+            dissipation: 0.0,
+            drag: 0.0,
             ..self.params
         }
     }

@@ -4,6 +4,7 @@
 //!
 //! Every field has a default, so an asset only needs the keys it changes.
 
+mod damping;
 mod load;
 mod locate;
 mod look;
@@ -73,6 +74,12 @@ pub struct CradleConfig {
     pub string_radius: f64,
     /// Radius of the frame's rods (m), > 0. Default 0.005.
     pub frame_radius: f64,
+    /// Density of the air the balls swing through (kg/m^3), 0..=100; 0 = no air
+    /// drag. Default 0. Drag needs `contact.model: hertz` and the exact integrator.
+    pub air_density: f64,
+    /// Drag coefficient of a ball, 0..=10: the drag is `air_density *
+    /// drag_coefficient * pi r^2 v^2 / 2`. Default 0.47 (a smooth sphere at a desk toy's speeds).
+    pub drag_coefficient: f64,
 }
 
 impl Default for CradleConfig {
@@ -88,6 +95,8 @@ impl Default for CradleConfig {
             gravity: 9.81,
             string_radius: 0.0006,
             frame_radius: 0.005,
+            air_density: 0.0,
+            drag_coefficient: 0.47,
         }
     }
 }
@@ -150,6 +159,10 @@ pub struct ContactConfig {
     pub youngs_modulus: f64,
     /// Poisson ratio for Hertz contact, 0 <= nu < 0.5. Default 0.29 (steel).
     pub poisson_ratio: f64,
+    /// Hertz contact's dissipative constant A (s), 0..=1e-3: the viscoelastic
+    /// force 3/2 A k sqrt(delta) d(delta)/dt adds to k delta^1.5. 0 = elastic.
+    /// Default 0. Needs `model: hertz` and the exact integrator.
+    pub dissipation: f64,
 }
 
 impl Default for ContactConfig {
@@ -159,6 +172,7 @@ impl Default for ContactConfig {
             restitution: 1.0,
             youngs_modulus: 2.0e11,
             poisson_ratio: 0.29,
+            dissipation: 0.0,
         }
     }
 }
@@ -207,6 +221,12 @@ impl Config {
                     self.cradle.radius,
                 )
             }),
+            dissipation: self.contact.dissipation,
+            drag: CradleParams::drag_of(
+                self.cradle.air_density,
+                self.cradle.drag_coefficient,
+                self.cradle.radius,
+            ),
         }
     }
 

@@ -53,10 +53,10 @@ impl fmt::Display for FieldError {
 }
 
 /// Collects failures in field order.
-struct Checker(Vec<FieldError>);
+pub(super) struct Checker(Vec<FieldError>);
 
 impl Checker {
-    fn fail(&mut self, path: &str, found: impl fmt::Debug, allowed: &str) {
+    pub(super) fn fail(&mut self, path: &str, found: impl fmt::Debug, allowed: &str) {
         self.0.push(FieldError {
             path: path.to_owned(),
             found: format!("{found:?}"),
@@ -65,7 +65,7 @@ impl Checker {
     }
 
     /// A finite number with `ok(v)`.
-    fn num(&mut self, path: &str, v: f64, ok: bool, allowed: &str) {
+    pub(super) fn num(&mut self, path: &str, v: f64, ok: bool, allowed: &str) {
         if !v.is_finite() {
             self.fail(path, v, &format!("a finite number, {allowed}"));
         } else if !ok {
@@ -241,6 +241,8 @@ impl Config {
             (0.0..0.5).contains(&ct.poisson_ratio),
             "0 <= nu < 0.5",
         );
+
+        self.check_damping(&mut c);
 
         let dt = self.physics.dt;
         c.num(

@@ -60,12 +60,17 @@ pub struct ExactEngine {
     /// The latest Hertz contact phase (or segment of one), boxed: most engines
     /// never have one.
     phase: Option<Box<Phase>>,
+    /// Energy lost in viscoelastic contacts by the end of the latest phase (J);
+    /// the second entry (drag) stays 0 here.
+    lost: [f64; 2],
 }
 
 /// A Hertz contact phase: where it started and how it ended.
 #[derive(Debug, Clone)]
 struct Phase {
     t0: f64,
+    /// The energy lost before it.
+    lost_before: [f64; 2],
     theta: Vec<f64>,
     omega: Vec<f64>,
     end: PhaseEnd,
@@ -95,6 +100,7 @@ impl ExactEngine {
             events: 0,
             start: (theta.to_vec(), omega.to_vec()),
             phase: None,
+            lost: [0.0; 2],
         };
         // Balls that start touching and approaching (none in a lifted start) are
         // resolved before anything flies.
@@ -253,6 +259,8 @@ impl ExactEngine {
         let k = self.params.hertz.unwrap_or(0.0);
         let end = hertz::run_phase(&self.params, k, t0, &theta, &omega, f64::INFINITY);
         self.collisions += end.contacts;
+        let lost_before = self.lost;
+        self.lost = [lost_before[0] + end.lost[0], lost_before[1] + end.lost[1]];
         if end.separated {
             self.t_event = end.t;
             let all = vec![true; end.theta.len()];
@@ -260,6 +268,7 @@ impl ExactEngine {
         }
         self.phase = Some(Box::new(Phase {
             t0,
+            lost_before,
             theta,
             omega,
             end,
@@ -326,23 +335,29 @@ impl ExactEngine {
         self.refly(&th, &om, &out.changed);
     }
 
-    /// State at `t` (>= every earlier call's `t`): angles (rad) and angular velocities
-    /// (rad/s).
-    pub fn state_at(&mut self, t: f64) -> (Vec<f64>, Vec<f64>) {
+    /// State at `t` (>= every earlier call's `t`): angles (rad), angular velocities
+    /// (rad/s), and the energy lost by then in contacts and to drag (J).
+    pub fn state_at(&mut self, t: f64) -> (Vec<f64>, Vec<f64>, [f64; 2]) {
         if t == 0.0 && self.events == 0 && self.collisions == 0 {
-            return self.start.clone();
+            return (self.start.0.clone(), self.start.1.clone(), self.lost);
         }
         self.advance_to(t);
         if let Some(ph) = self.phase.as_ref().filter(|ph| t >= ph.t0 && t < ph.end.t) {
             // Inside a contact: the phase again from its start, cut at t.
             let k = self.params.hertz.unwrap_or(0.0);
             let cut = hertz::run_phase(&self.params, k, ph.t0, &ph.theta, &ph.omega, t);
-            return (cut.theta, cut.omega);
+            let b = ph.lost_before;
+            return (
+                cut.theta,
+                cut.omega,
+                [b[0] + cut.lost[0], b[1] + cut.lost[1]],
+            );
         }
         if let Some(ph) = self.phase.as_ref().filter(|ph| !ph.end.separated) {
-            return (ph.end.theta.clone(), ph.end.omega.clone());
+            return (ph.end.theta.clone(), ph.end.omega.clone(), self.lost);
         }
-        self.state_now(t)
+        let (theta, omega) = self.state_now(t);
+        (theta, omega, self.lost)
     }
 
     /// Impacts so far (pairwise impulses; resting contacts excluded).

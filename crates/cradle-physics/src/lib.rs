@@ -5,7 +5,8 @@
 //! closed form (`flight`, from the Jacobi elliptic functions of `elliptic`);
 //! impacts are roots of the neighbours' gap functions (`contact`, `roots`), found
 //! by the exact event-driven engine (`exact`). Soft Hertz contact (`hertz`)
-//! replaces the instantaneous impacts when asked for. Fixed-step integrators
+//! replaces the instantaneous impacts when asked for, elastic or viscoelastic
+//! (`row`); with air drag the damped engine (`damped`) integrates the whole motion. Fixed-step integrators
 //! (`stepped`) with the same impacts exist for comparison. `cradle` puts them
 //! behind one type.
 
@@ -13,12 +14,15 @@
 
 pub mod contact;
 pub mod cradle;
+pub mod damped;
+mod dopri;
 pub mod elliptic;
 pub mod exact;
 pub mod flight;
 pub mod hertz;
 pub mod params;
 pub mod roots;
+mod row;
 pub mod stepped;
 
 pub use cradle::{Cradle, Snapshot};

@@ -68,9 +68,29 @@ pub struct CradleParams {
     /// Hertz contact stiffness `k` (N/m^1.5) of soft balls, or `None` for ideal
     /// impacts ([`super::hertz`]).
     pub hertz: Option<f64>,
+    /// Dissipative constant `A` (s) of viscoelastic Hertz contact (`row`): 0 for
+    /// elastic contact. Used with `hertz` only.
+    pub dissipation: f64,
+    /// Quadratic air drag `c = rho C_d pi r^2 / 2` (kg/m): a ball's centre moving at
+    /// `v` feels `c v^2` against its motion. 0 for none; used with `hertz` and
+    /// the exact engine only, whose flights are then integrated ([`super::damped`]).
+    pub drag: f64,
 }
 
 impl CradleParams {
+    /// The drag constant `c` (kg/m) of a sphere of radius `radius` (m) with drag
+    /// coefficient `cd` in air of density `rho` (kg/m^3): `rho cd pi r^2 / 2`.
+    #[must_use]
+    pub fn drag_of(rho: f64, cd: f64, radius: f64) -> f64 {
+        0.5 * rho * cd * std::f64::consts::PI * radius * radius
+    }
+
+    /// True when the cradle loses energy through viscoelastic contacts or drag.
+    #[must_use]
+    pub fn dissipative(&self) -> bool {
+        self.hertz.is_some() && (self.dissipation > 0.0 || self.drag > 0.0)
+    }
+
     /// Distance between neighbouring pivots (m): `2r + gap`.
     #[must_use]
     pub fn spacing(&self) -> f64 {

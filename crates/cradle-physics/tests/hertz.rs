@@ -22,6 +22,8 @@ fn steel_on(balls: usize, gravity: f64, length: f64) -> CradleParams {
         gravity,
         restitution: 1.0,
         hertz: Some(stiffness(2.0e11, 0.29, radius)),
+        dissipation: 0.0,
+        drag: 0.0,
     }
 }
 

@@ -14,6 +14,8 @@ fn params(balls: usize, gap: f64, restitution: f64) -> CradleParams {
         gravity: 9.81,
         restitution,
         hertz: None,
+        dissipation: 0.0,
+        drag: 0.0,
     }
 }
 

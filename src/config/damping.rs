@@ -1,0 +1,56 @@
+//! The config keys of a cradle that loses energy: viscoelastic contacts
+//! (`contact.dissipation`) and air drag (`cradle.air_density`,
+//! `cradle.drag_coefficient`), checked with what they need (Hertz contact, the
+//! exact integrator).
+
+use super::validate::Checker;
+use super::{Config, ContactModel};
+use crate::physics::Integrator;
+
+impl Config {
+    /// True when the air drags the balls (both drag keys above 0).
+    #[must_use]
+    pub fn has_drag(&self) -> bool {
+        self.cradle.air_density > 0.0 && self.cradle.drag_coefficient > 0.0
+    }
+
+    /// Range checks of the dissipation keys, and what they need.
+    pub(super) fn check_damping(&self, c: &mut Checker) {
+        let (k, ct) = (&self.cradle, &self.contact);
+        c.num(
+            "cradle.air_density",
+            k.air_density,
+            (0.0..=100.0).contains(&k.air_density),
+            "0..=100 (kg/m^3; air at 20 C is 1.2, 0 = no drag)",
+        );
+        c.num(
+            "cradle.drag_coefficient",
+            k.drag_coefficient,
+            (0.0..=10.0).contains(&k.drag_coefficient),
+            "0..=10 (a smooth sphere: 0.47)",
+        );
+        c.num(
+            "contact.dissipation",
+            ct.dissipation,
+            (0.0..=1e-3).contains(&ct.dissipation),
+            "0..=1e-3 (s; 0 = elastic)",
+        );
+        let hertz = ct.model == ContactModel::Hertz;
+        let exact = self.physics.integrator == Integrator::Exact;
+        let needs = "with contact.model hertz and physics.integrator exact only";
+        if ct.dissipation > 0.0 && !(hertz && exact) {
+            c.fail(
+                "contact.dissipation",
+                ct.dissipation,
+                &format!("0, or 0..=1e-3 (s) {needs}"),
+            );
+        }
+        if self.has_drag() && !(hertz && exact) {
+            c.fail(
+                "cradle.air_density",
+                k.air_density,
+                &format!("0, or 0..=100 (kg/m^3) {needs}"),
+            );
+        }
+    }
+}
