@@ -106,6 +106,12 @@ fn run(job: Job) -> Result<(), Failure> {
             bench::physics::report(&plan, json, plot.as_deref(), &mut out)?;
         }
         Job::BenchStress { scale, json } => bench::stress::report(scale, json, &mut out)?,
+        Job::BenchRocking {
+            config,
+            duration,
+            json,
+            plot,
+        } => bench::rocking::report(&config, duration, json, plot.as_deref(), &mut out)?,
         Job::BenchQuality {
             config,
             frames,

@@ -3,12 +3,14 @@
 //! - [`physics`]: the work-precision benchmark of the integrators.
 //! - [`quality`]: picture error against render time (anti-aliasing, depth).
 //! - [`stress`]: the stability stress suite, longer runs of `tests/stress.rs`.
+//! - [`rocking`]: a dissipative cradle's drift into swinging in phase.
 //! - [`plot`]: SVG line plots (plotters) for the benchmarks' `--plot`.
 
 pub mod physics;
 pub mod plot;
 pub mod quality;
 pub mod render;
+pub mod rocking;
 pub mod stress;
 
 pub use render::{Row, bench_render};

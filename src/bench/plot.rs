@@ -130,3 +130,58 @@ pub fn log_log_svg(path: &Path, panels: &[Panel], axes: Axes) -> anyhow::Result<
     crate::export::write_all(path, svg.as_bytes())?;
     Ok(())
 }
+
+/// Writes one chart of lines on linear axes (from 0) as SVG, no markers: long
+/// time series such as `bench rocking`'s amplitudes. `labels`: (x, y) axis labels.
+///
+/// # Errors
+/// When the file cannot be written.
+pub fn line_svg(
+    path: &Path,
+    title: &str,
+    series: &[Series],
+    labels: (&str, &str),
+) -> anyhow::Result<()> {
+    let finite = |p: &&(f64, f64)| p.0.is_finite() && p.1.is_finite();
+    let all = || series.iter().flat_map(|s| s.points.iter().filter(finite));
+    let x_max = all().map(|p| p.0).fold(0.0_f64, f64::max).max(1e-9);
+    let y_max = all().map(|p| p.1).fold(0.0_f64, f64::max).max(1e-9) * 1.05;
+    let mut svg = String::new();
+    let root = SVGBackend::with_string(&mut svg, (900, 520)).into_drawing_area();
+    let draw = || -> Result<(), Box<dyn std::error::Error + '_>> {
+        root.fill(&WHITE)?;
+        let mut chart = ChartBuilder::on(&root)
+            .caption(title, ("sans-serif", 20))
+            .margin(12)
+            .x_label_area_size(44)
+            .y_label_area_size(64)
+            .build_cartesian_2d(0.0..x_max, 0.0..y_max)?;
+        chart
+            .configure_mesh()
+            .x_desc(labels.0)
+            .y_desc(labels.1)
+            .draw()?;
+        for (i, s) in series.iter().enumerate() {
+            let colour = Palette99::pick(i).to_rgba();
+            let pts: Vec<(f64, f64)> = s.points.iter().filter(finite).copied().collect();
+            chart
+                .draw_series(LineSeries::new(pts, colour.stroke_width(2)))?
+                .label(s.name.as_str())
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2))
+                });
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .draw()?;
+        root.present()?;
+        Ok(())
+    };
+    draw().map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+    drop(root);
+    crate::export::write_all(path, svg.as_bytes())?;
+    Ok(())
+}

@@ -94,6 +94,27 @@ pub enum BenchCommand {
     Stress(BenchStressArgs),
     /// Picture error (RMSE, PSNR) against ms per frame, per anti-aliasing mode and depth.
     RenderQuality(BenchQualityArgs),
+    /// A dissipative cradle (e.g. --config assets/realistic.ron): amplitudes, the drift into swinging in phase, restitution.
+    Rocking(BenchRockingArgs),
+}
+
+/// `bench rocking`'s flags.
+#[derive(Debug, Args)]
+pub struct BenchRockingArgs {
+    /// One JSON line instead of a table.
+    #[arg(long)]
+    pub json: bool,
+    /// Also draw each ball's amplitude against time here.
+    #[arg(long, value_name = "FILE.svg")]
+    pub plot: Option<PathBuf>,
+    /// Simulated seconds, 1..=3600.
+    #[arg(value_parser = number("1..=3600 (s)"),
+        long,
+        default_value_t = 90.0,
+        allow_negative_numbers = true,
+        value_name = "S"
+    )]
+    pub duration: f64,
 }
 
 /// `bench render-quality`'s flags.

@@ -3,8 +3,8 @@
 //! the common overrides. `main` only dispatches the job.
 
 use super::args::{
-    BenchCommand, BenchMode, BenchPhysicsArgs, BenchQualityArgs, BenchRenderArgs, BenchStressArgs,
-    Cli, Command, Common, RenderArgs, SimulateArgs,
+    BenchCommand, BenchMode, BenchPhysicsArgs, BenchQualityArgs, BenchRenderArgs, BenchRockingArgs,
+    BenchStressArgs, Cli, Command, Common, RenderArgs, SimulateArgs,
 };
 use super::overrides::{InputError, Short, flag_value};
 use crate::bench::physics::Plan;
@@ -73,6 +73,17 @@ pub enum Job {
         scale: f64,
         /// JSON Lines instead of a table.
         json: bool,
+    },
+    /// `bench rocking`.
+    BenchRocking {
+        /// The config.
+        config: Config,
+        /// Simulated seconds.
+        duration: f64,
+        /// One JSON line instead of a table.
+        json: bool,
+        /// Where to draw the amplitudes.
+        plot: Option<PathBuf>,
     },
     /// `bench render-quality`.
     BenchQuality {
@@ -195,6 +206,16 @@ impl Job {
                     json: a.json,
                 }
             }
+            BenchCommand::Rocking(a) => {
+                let duration = bench_rocking_duration(&a)?;
+                check_plot(a.plot.as_deref(), common)?;
+                Self::BenchRocking {
+                    config: asset()?,
+                    duration,
+                    json: a.json,
+                    plot: a.plot,
+                }
+            }
             BenchCommand::RenderQuality(a) => {
                 let frames = quality_frames(&a)?;
                 let used: Vec<&str> = common
@@ -252,6 +273,15 @@ fn check_plot(plot: Option<&std::path::Path>, common: &Common) -> Result<(), Inp
 fn bench_stress_scale(a: &BenchStressArgs) -> Result<f64, InputError> {
     let ok = a.scale.is_finite() && (0.01..=1000.0).contains(&a.scale);
     flag_value("--scale", a.scale, ok, "0.01..=1000")
+}
+
+/// Checks `bench rocking`'s flags.
+///
+/// # Errors
+/// A flag out of range.
+fn bench_rocking_duration(a: &BenchRockingArgs) -> Result<f64, InputError> {
+    let ok = a.duration.is_finite() && (1.0..=3600.0).contains(&a.duration);
+    flag_value("--duration", a.duration, ok, "1..=3600 (s)")
 }
 
 /// Checks `simulate`'s own flags.
