@@ -21,6 +21,10 @@ pub struct Controls {
     pub restitution: f64,
     /// Contact model.
     pub contact: ContactModel,
+    /// Hertz contact's dissipative constant (s): 0 elastic.
+    pub dissipation: f64,
+    /// Air density (kg/m^3): 0 no drag.
+    pub air_density: f64,
     /// Solver.
     pub integrator: Integrator,
     /// Samples per pixel.
@@ -53,6 +57,8 @@ impl Controls {
             gap: config.cradle.gap,
             restitution: config.contact.restitution,
             contact: config.contact.model,
+            dissipation: config.contact.dissipation,
+            air_density: config.cradle.air_density,
             integrator: config.physics.integrator,
             samples: config.render.samples,
             adaptive: config.render.adaptive,
@@ -72,6 +78,8 @@ impl Controls {
         c.cradle.gap = self.gap;
         c.contact.restitution = self.restitution;
         c.contact.model = self.contact;
+        c.contact.dissipation = self.dissipation;
+        c.cradle.air_density = self.air_density;
         c.physics.integrator = self.integrator;
         c.render.samples = self.samples;
         c.render.adaptive = self.adaptive;

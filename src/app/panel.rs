@@ -74,9 +74,9 @@ impl Panel {
         let input = self.state.take_egui_input(window);
         let mut controls = session.controls();
         let before = controls.clone();
-        let (shares, error) = session.energies();
+        let (shares, energy) = session.energies();
         let output = self.ctx.run_ui(input, |ui| {
-            panel_ui(ui.ctx(), &mut controls, &shares, error);
+            panel_ui(ui.ctx(), &mut controls, &shares, energy);
         });
         if controls != before {
             session.apply_controls(&controls);
@@ -139,7 +139,7 @@ impl Panel {
 }
 
 /// The panel's widgets.
-fn panel_ui(ctx: &Context, c: &mut Controls, shares: &[f64], error: f64) {
+fn panel_ui(ctx: &Context, c: &mut Controls, shares: &[f64], energy: (f64, f64)) {
     egui::Window::new("Controls")
         .anchor(egui::Align2::RIGHT_TOP, [-8.0, 8.0])
         .default_width(260.0)
@@ -158,6 +158,12 @@ fn panel_ui(ctx: &Context, c: &mut Controls, shares: &[f64], error: f64) {
                     ui.selectable_value(&mut c.contact, ContactModel::Ideal, "ideal");
                     ui.selectable_value(&mut c.contact, ContactModel::Hertz, "hertz");
                 });
+            ui.add(
+                egui::Slider::new(&mut c.dissipation, 0.0..=1e-5)
+                    .logarithmic(true)
+                    .text("hertz dissipation (s)"),
+            );
+            ui.add(egui::Slider::new(&mut c.air_density, 0.0..=2.0).text("air density (kg/m^3)"));
             egui::ComboBox::from_label("integrator")
                 .selected_text(c.integrator.name())
                 .show_ui(ui, |ui| {
@@ -179,7 +185,11 @@ fn panel_ui(ctx: &Context, c: &mut Controls, shares: &[f64], error: f64) {
                     }),
             );
             ui.separator();
-            ui.label(format!("energy, relative error {error:+.1e}"));
+            let (left, error) = energy;
+            ui.label(format!(
+                "energy left {:.1}%, relative error {error:+.1e}",
+                100.0 * left
+            ));
             egui::ScrollArea::vertical()
                 .max_height(200.0)
                 .show(ui, |ui| {

@@ -260,3 +260,43 @@ fn dragging_the_right_end_ball_lifts_it_and_letting_go_swings_it() {
         "it swings down"
     );
 }
+
+#[test]
+fn a_lossy_cradle_shows_the_energy_left_and_the_panel_sets_the_losses() {
+    let (dir, path) = asset(
+        "lossy",
+        "(contact: (model: hertz, dissipation: 5e-7), cradle: (air_density: 1.2))",
+    );
+    let mut s = session_with(ConfigSource::File(path));
+    s.reload(|_, _| Ok(()));
+    let now = Instant::now();
+    s.step(now);
+    s.act(Action::TogglePause);
+    s.step(now);
+    let full = s.hud_lines()[2].0.clone();
+    assert!(full.contains("energy left 100.0%"), "{full}");
+    // Two seconds: a few strikes, each losing some percent.
+    frames(&mut s, now, 120);
+    let (_, (left, error)) = s.energies();
+    assert!(left < 0.9 && left > 0.0, "{left}");
+    assert!(error.abs() < 1e-8, "the balance holds: {error}");
+    let line = s.hud_lines()[2].0.clone();
+    assert!(
+        line.contains(&format!("energy left {:.1}%", 100.0 * left)),
+        "{line}"
+    );
+    // The panel turns the losses off (elastic again, a restart) and refuses
+    // dissipation with ideal impacts, naming the key.
+    let mut c = s.controls();
+    c.dissipation = 0.0;
+    c.air_density = 0.0;
+    s.apply_controls(&c);
+    assert!(!s.config().cradle_params().dissipative());
+    assert!(s.hud_lines()[2].0.contains("energy err"));
+    let mut bad = s.controls();
+    bad.contact = crate::config::ContactModel::Ideal;
+    bad.dissipation = 1e-6;
+    s.apply_controls(&bad);
+    assert!(s.error().is_some_and(|e| e.contains("contact.dissipation")));
+    std::fs::remove_dir_all(&dir).ok();
+}

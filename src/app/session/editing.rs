@@ -40,9 +40,10 @@ impl Session {
         }
     }
 
-    /// Each ball's share of the starting energy, and the total's relative error.
+    /// Each ball's share of the starting energy; the share left in all, and its
+    /// relative error (of the energy balance when the cradle dissipates).
     #[must_use]
-    pub fn energies(&self) -> (Vec<f64>, f64) {
+    pub fn energies(&self) -> (Vec<f64>, (f64, f64)) {
         let cradle = self.world.cradle();
         let p = self.config.cradle_params();
         let e0 = cradle.cradle.initial_energy();
@@ -59,6 +60,11 @@ impl Session {
                 }
             })
             .collect();
-        (shares, cradle.cradle.energy_rel_error(s))
+        let left = if e0 > 0.0 {
+            cradle.cradle.energy(s) / e0
+        } else {
+            1.0
+        };
+        (shares, (left, cradle.cradle.energy_rel_error(s)))
     }
 }

@@ -42,9 +42,17 @@ impl Session {
                 ),
                 white,
             ));
+            // A cradle that loses energy shows how much is left; an ideal one,
+            // how well it keeps it.
+            let energy = if cradle.cradle.params().dissipative() {
+                let (_, (left, _)) = self.energies();
+                format!("energy left {:.1}%", 100.0 * left)
+            } else {
+                format!("energy err {err:+.1e}")
+            };
             lines.push((
                 format!(
-                    "balls {}  lifted {}  contact {}  energy err {err:+.1e}",
+                    "balls {}  lifted {}  contact {}  {energy}",
                     c.cradle.balls,
                     c.start.lift,
                     c.contact.model.name()
