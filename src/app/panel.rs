@@ -161,6 +161,9 @@ fn panel_ui(ctx: &Context, c: &mut Controls, shares: &[f64], energy: (f64, f64))
             ui.add(
                 egui::Slider::new(&mut c.dissipation, 0.0..=1e-5)
                     .logarithmic(true)
+                    .smallest_positive(1e-8)
+                    .custom_formatter(|v, _| format!("{v:.2e}"))
+                    .custom_parser(|s| s.trim().parse().ok())
                     .text("hertz dissipation (s)"),
             );
             ui.add(egui::Slider::new(&mut c.air_density, 0.0..=2.0).text("air density (kg/m^3)"));
