@@ -68,12 +68,26 @@ fn moved_cells(grid: &MotionGrid, before: &Scene, after: &Scene) -> Cells {
         .map(|(a, b)| {
             [&a.shape, &b.shape]
                 .into_iter()
-                .map(|s| {
-                    super::prepared::bounds(s).map_or(Cells::MAX, |bx| grid.cells(bx.min, bx.max))
-                })
+                .map(|s| shape_cells(grid, s))
                 .fold(0, |m, c| m | c)
         })
         .fold(0, |m, c| m | c)
+}
+
+/// The cells `shape` overlaps: a cylinder's as the cells of 8 pieces along it,
+/// so a thin slanted string claims a band of cells, not its whole bounding box.
+fn shape_cells(grid: &MotionGrid, shape: &super::scene::Shape) -> Cells {
+    if let super::scene::Shape::Cylinder { a, b, radius } = *shape {
+        let r = glam::Vec3::splat(radius);
+        return (0..8)
+            .map(|i| {
+                let p = a.lerp(b, i as f32 / 8.0);
+                let q = a.lerp(b, (i + 1) as f32 / 8.0);
+                grid.cells(p.min(q) - r, p.max(q) + r)
+            })
+            .fold(0, |m, c| m | c);
+    }
+    super::prepared::bounds(shape).map_or(Cells::MAX, |bx| grid.cells(bx.min, bx.max))
 }
 
 impl Incremental {
@@ -138,5 +152,44 @@ impl Incremental {
             .as_ref()
             .map_or(1, |i| (i.width * i.height) as usize);
         self.retraced as f64 / total.max(1) as f64
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::shape_cells;
+    use crate::geometry::Aabb;
+    use crate::motion::MotionGrid;
+    use crate::scene::Shape;
+    use glam::Vec3;
+
+    #[test]
+    fn a_slanted_string_claims_a_band_of_cells_that_covers_it() {
+        let grid = MotionGrid::new(Aabb {
+            min: Vec3::new(-0.2, 0.0, -0.05),
+            max: Vec3::new(0.2, 0.25, 0.05),
+        });
+        let (a, b) = (Vec3::new(-0.15, 0.24, 0.04), Vec3::new(0.1, 0.02, 0.0));
+        let string = Shape::Cylinder {
+            a,
+            b,
+            radius: 0.0006,
+        };
+        let band = shape_cells(&grid, &string);
+        // Every point of the axis lies in a claimed cell.
+        for i in 0..=1000 {
+            let p = a.lerp(b, i as f32 / 1000.0);
+            let cell = grid.cells(p, p);
+            assert_eq!(cell & !band, 0, "point {i} outside the band");
+        }
+        // And the band is well under the bounding box's cells (here 29 of 32
+        // columns times 4 rows): at most half of them.
+        let boxed = grid.cells(a.min(b), a.max(b));
+        assert!(
+            band.count_ones() * 2 <= boxed.count_ones(),
+            "{} of {}",
+            band.count_ones(),
+            boxed.count_ones()
+        );
     }
 }
