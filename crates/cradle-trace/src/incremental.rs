@@ -3,9 +3,11 @@
 //! other pixel's bytes, so the result equals a full render byte for byte.
 
 use super::color::Image;
-use super::motion::{Cells, MotionGrid};
+use super::motion::{Cells, MotionGrid, Near};
 use super::render::{Frame, RenderOptions};
+use super::retrace::{Moved, RowMotion};
 use super::scene::Scene;
+use glam::Vec3;
 use rayon::prelude::*;
 
 /// Whether `a` and `b` differ at most in the shapes of their moving objects: then
@@ -50,28 +52,39 @@ pub struct Incremental {
     /// The scene of the last frame.
     last: Option<Scene>,
     image: Option<Image>,
-    /// Per pixel, the motion cells its rays passed through when last traced.
-    masks: Vec<Cells>,
+    /// Per row, each pixel's motion cells and segments when last traced.
+    rows: Vec<RowMotion>,
     full: bool,
     /// Pixels re-traced by the last frame.
     retraced: usize,
 }
 
-/// The motion cells of the objects that moved from `before` to `after` (same
-/// objects in the same order), where they were and where they are.
-fn moved_cells(grid: &MotionGrid, before: &Scene, after: &Scene) -> Cells {
-    before
+/// The objects that moved from `before` to `after` (same objects in the same
+/// order), where they were and where they are: their motion cells and shapes.
+fn moved(grid: &MotionGrid, before: &Scene, after: &Scene) -> Moved {
+    let mut out = Moved {
+        lo: Vec3::INFINITY,
+        hi: Vec3::NEG_INFINITY,
+        ..Moved::default()
+    };
+    let shapes = before
         .objects
         .iter()
         .zip(&after.objects)
         .filter(|(a, b)| a.moving && a.shape != b.shape)
-        .map(|(a, b)| {
-            [&a.shape, &b.shape]
-                .into_iter()
-                .map(|s| shape_cells(grid, s))
-                .fold(0, |m, c| m | c)
-        })
-        .fold(0, |m, c| m | c)
+        .flat_map(|(a, b)| [&a.shape, &b.shape]);
+    for s in shapes {
+        out.cells |= shape_cells(grid, s);
+        if let Some(n) = Near::of(s) {
+            (out.lo, out.hi) = (out.lo.min(n.lo()), out.hi.max(n.hi()));
+            out.near.push(n);
+        } else {
+            // A moving plane (none is): every segment may meet it.
+            out.cells = Cells::MAX;
+            out.coarse = true;
+        }
+    }
+    out
 }
 
 /// The cells `shape` overlaps: a cylinder's as the cells of 8 pieces along it,
@@ -111,20 +124,20 @@ impl Incremental {
                 .is_some_and(|l| same_but_motion(l, scene));
         self.full = !reuse;
         if let (true, Some(grid), Some(last)) = (reuse, frame.motion, self.last.as_ref()) {
-            let moved = moved_cells(&grid, last, scene);
+            let moved = moved(&grid, last, scene);
             let img = self.image.as_mut().expect("checked above");
             let stride = img.width as usize * 4;
             self.retraced = img
                 .rgba
                 .par_chunks_exact_mut(stride)
-                .zip(self.masks.par_chunks_exact_mut(img.width as usize))
+                .zip(self.rows.par_iter_mut())
                 .enumerate()
-                .map(|(y, (row, masks))| frame.retrace_row(y as u32, row, masks, moved))
+                .map(|(y, (row, rm))| frame.retrace_row(y as u32, row, rm, &moved))
                 .sum();
         } else {
-            let (img, masks) = frame.image(true);
-            self.retraced = masks.len();
-            self.masks = masks;
+            let (img, rows) = frame.image(true);
+            self.retraced = img.width as usize * img.height as usize;
+            self.rows = rows;
             self.image = Some(img);
             self.full = true;
         }

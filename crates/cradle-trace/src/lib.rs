@@ -10,8 +10,8 @@
 //! - [`camera`], [`geometry`], [`shade`]: rays, hit tests and Whitted shading;
 //! - [`sampling`], [`render`]: sample offsets and the serial and parallel render
 //!   twins ([`render`], [`render_serial`]);
-//! - [`motion`], [`incremental`]: motion cells and incremental frames
-//!   ([`Incremental`]);
+//! - [`motion`], `retrace`, [`incremental`]: motion cells and ray segments, and
+//!   incremental frames ([`Incremental`]);
 //! - [`color`]: linear colour to sRGB bytes in an RGBA8 [`Image`].
 
 pub mod bvh;
@@ -24,6 +24,7 @@ pub mod motion;
 pub mod packet;
 pub mod prepared;
 pub mod render;
+mod retrace;
 pub mod sampling;
 pub mod scene;
 pub mod shade;

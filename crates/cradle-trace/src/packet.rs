@@ -22,13 +22,13 @@
 use super::camera::CameraRays;
 use super::color::srgb8_lanes;
 use super::geometry::{Ray, T_MIN};
-use super::motion::{Cells, MotionGrid};
+use super::motion::{Cells, MotionGrid, Seg};
 use super::prepared::Prepared;
 use super::scene::{Material, Shape};
 use super::shade::SURFACE_OFFSET;
 use super::tiles::Tiles;
 use glam::Vec3;
-use std::cell::Cell;
+use std::cell::{Cell, RefCell};
 
 /// Pixels per packet.
 pub const LANES: usize = 8;
@@ -120,6 +120,11 @@ pub(crate) struct Packet<'a, 'p> {
     pub(crate) motion: Option<MotionGrid>,
     /// The cells each lane's rays passed through (with `motion`).
     pub(crate) marks: Cell<[Cells; LANES]>,
+    /// The segments of the lanes' rays inside the motion box, with their lane, in
+    /// the order traced (with `motion`).
+    pub(crate) segs: RefCell<Vec<(u8, Seg)>>,
+    /// A buffer lent to the scalar path's `Motion` for a lane.
+    pub(crate) scratch: Cell<Vec<Seg>>,
 }
 
 impl Packet<'_, '_> {
@@ -136,15 +141,28 @@ impl Packet<'_, '_> {
         (done, self.marks.get())
     }
 
-    /// Notes the cells the segment of `ray` up to `t` passes through, for lane
-    /// `i` (what `Motion::segment` notes for a pixel).
+    /// Notes the cells the segment of `ray` up to `t` passes through, and its part
+    /// in the motion box, for lane `i` (what `Motion::segment` notes for a pixel).
     #[inline]
     pub(crate) fn note(&self, i: usize, ray: &Ray, t: f32) {
-        if let Some(g) = &self.motion {
+        if let Some(g) = &self.motion
+            && let Some(s) = g.clip(ray, t)
+        {
             let mut m = self.marks.get();
-            m[i] |= g.segment(ray, t);
+            m[i] |= g.cells(s.a.min(s.b), s.a.max(s.b));
             self.marks.set(m);
+            self.segs.borrow_mut().push((i as u8, s));
         }
+    }
+
+    /// Appends the segments lane `i` noted in the last packet to `out`.
+    pub(crate) fn lane_segs(&self, i: usize, out: &mut Vec<Seg>) {
+        let segs = self.segs.borrow();
+        out.extend(
+            segs.iter()
+                .filter(|(l, _)| usize::from(*l) == i)
+                .map(|(_, s)| *s),
+        );
     }
 
     /// Traces pixels `x0..x0 + 8` of row `y` at their centres into `out` (8 RGBA
@@ -162,6 +180,7 @@ impl Packet<'_, '_> {
     ) -> u8 {
         if self.motion.is_some() {
             self.marks.set([0; LANES]);
+            self.segs.borrow_mut().clear();
         }
         #[cfg(target_arch = "x86_64")]
         if super::simd::avx2() {

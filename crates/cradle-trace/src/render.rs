@@ -6,9 +6,10 @@
 use super::camera::CameraRays;
 use super::color::{Image, srgb8};
 use super::geometry::Aabb;
-use super::motion::{Cells, Motion, MotionGrid};
+use super::motion::{Cells, Motion, MotionGrid, Seg};
 use super::packet::{LANES, Packet};
 use super::prepared::Prepared;
+use super::retrace::RowMotion;
 use super::sampling::sample_offsets;
 use super::scene::Scene;
 use super::shade::{radiance_bound, trace, trace_primary};
@@ -87,9 +88,10 @@ impl<'a> Frame<'a> {
     }
 
     /// The linear colour of pixel `(x, y)` from samples at `offsets`, and the
-    /// motion cells its rays passed through.
-    fn pixel(&self, x: u32, y: u32, offsets: &[(f32, f32)]) -> (Vec3, Cells) {
-        let mut motion = Motion::new(self.motion);
+    /// motion cells its rays passed through; their segments in the motion box are
+    /// appended to `segs`.
+    fn pixel(&self, x: u32, y: u32, offsets: &[(f32, f32)], segs: &mut Vec<Seg>) -> (Vec3, Cells) {
+        let mut motion = Motion::with(self.motion, std::mem::take(segs));
         let sum: Vec3 = offsets
             .iter()
             .map(|&(dx, dy)| {
@@ -102,21 +104,39 @@ impl<'a> Frame<'a> {
                 }
             })
             .sum();
+        *segs = motion.segs;
         (sum / offsets.len() as f32, motion.mask)
     }
 
-    fn put_with(&self, x: u32, y: u32, px: &mut [u8], offsets: &[(f32, f32)]) -> Cells {
-        let (c, mask) = self.pixel(x, y, offsets);
+    fn put_with(
+        &self,
+        (x, y): (u32, u32),
+        px: &mut [u8],
+        offsets: &[(f32, f32)],
+        segs: &mut Vec<Seg>,
+    ) -> Cells {
+        let (c, mask) = self.pixel(x, y, offsets, segs);
         px.copy_from_slice(&[srgb8(c.x), srgb8(c.y), srgb8(c.z), 255]);
         mask
     }
 
-    pub(crate) fn put(&self, x: u32, y: u32, px: &mut [u8]) -> Cells {
-        self.put_with(x, y, px, &self.offsets)
+    /// Traces pixel `(x, y)` into `px`: its motion cells; its segments go to `segs`.
+    pub(crate) fn put(&self, x: u32, y: u32, px: &mut [u8], segs: &mut Vec<Seg>) -> Cells {
+        self.put_with((x, y), px, &self.offsets, segs)
+    }
+
+    /// Picture width (px).
+    pub(crate) fn width(&self) -> u32 {
+        self.width
+    }
+
+    /// The pixel's sample offsets.
+    pub(crate) fn offsets(&self) -> &[(f32, f32)] {
+        &self.offsets
     }
 
     /// The packet tracer for samples at `offsets`: centre samples with tiles.
-    fn packets(&self, offsets: &[(f32, f32)]) -> Option<Packet<'_, 'a>> {
+    pub(crate) fn packets(&self, offsets: &[(f32, f32)]) -> Option<Packet<'_, 'a>> {
         let tiles = self.tiles.as_ref().filter(|_| offsets == [(0.5, 0.5)])?;
         Some(Packet {
             p: &self.prepared,
@@ -125,13 +145,17 @@ impl<'a> Frame<'a> {
             bound: self.bound,
             motion: self.motion,
             marks: std::cell::Cell::new([0; LANES]),
+            segs: std::cell::RefCell::new(Vec::new()),
+            scratch: std::cell::Cell::new(Vec::new()),
         })
     }
 
-    /// Traces a whole row with `offsets`; returns each pixel's motion cells.
-    /// Centre samples go in packets where the tile allows.
-    fn row_with(&self, y: u32, out: &mut [u8], offsets: &[(f32, f32)]) -> Vec<Cells> {
-        let mut cells = vec![0; self.width as usize];
+    /// Traces a whole row with `offsets`; returns each pixel's motion cells and
+    /// segments (segments only in a tracked frame). Centre samples go in packets
+    /// where the tile allows.
+    fn row_with(&self, y: u32, out: &mut [u8], offsets: &[(f32, f32)]) -> RowMotion {
+        let track = self.motion.is_some();
+        let mut rm = RowMotion::new(self.width as usize, track);
         let packets = self.packets(offsets);
         let mut x = 0;
         while x < self.width {
@@ -142,71 +166,27 @@ impl<'a> Frame<'a> {
                 let span = &mut out[x as usize * 4..(x + lanes) as usize * 4];
                 let (done, marks) = pk.run(x, y, span);
                 for i in x..x + lanes {
+                    rm.begin(track);
                     if done & (1 << (i - x)) != 0 {
-                        cells[i as usize] = marks[(i - x) as usize];
+                        rm.cells[i as usize] = marks[(i - x) as usize];
+                        if track {
+                            pk.lane_segs((i - x) as usize, &mut rm.segs);
+                        }
                         continue;
                     }
                     let px = &mut out[i as usize * 4..i as usize * 4 + 4];
-                    cells[i as usize] = self.put_with(i, y, px, offsets);
+                    rm.cells[i as usize] = self.put_with((i, y), px, offsets, &mut rm.segs);
                 }
                 x += lanes;
                 continue;
             }
+            rm.begin(track);
             let px = &mut out[x as usize * 4..x as usize * 4 + 4];
-            cells[x as usize] = self.put_with(x, y, px, offsets);
+            rm.cells[x as usize] = self.put_with((x, y), px, offsets, &mut rm.segs);
             x += 1;
         }
-        cells
-    }
-
-    /// Re-traces the pixels of row `y` whose cells (`masks`) meet `moved`, in
-    /// packets where eight pixels in a row hold one such: a packet's bytes and
-    /// cells are the scalar path's, and a pixel whose cells miss `moved` would
-    /// get its own bytes and cells again. Returns how many pixels it traced.
-    pub(crate) fn retrace_row(
-        &self,
-        y: u32,
-        row: &mut [u8],
-        masks: &mut [Cells],
-        moved: Cells,
-    ) -> usize {
-        let packets = self.packets(&self.offsets);
-        let mut traced = 0;
-        let mut x = 0;
-        while x < self.width {
-            let lanes = LANES as u32;
-            let end = (x + lanes).min(self.width);
-            let dirty = (x..end).any(|i| masks[i as usize] & moved != 0);
-            if !dirty {
-                x = end;
-                continue;
-            }
-            if let Some(pk) = &packets
-                && end - x == lanes
-            {
-                let (done, marks) = pk.run(x, y, &mut row[x as usize * 4..end as usize * 4]);
-                for i in x..end {
-                    let k = i as usize;
-                    if done & (1 << (i - x)) != 0 {
-                        masks[k] = marks[(i - x) as usize];
-                        traced += 1;
-                    } else if masks[k] & moved != 0 {
-                        masks[k] = self.put(i, y, &mut row[k * 4..k * 4 + 4]);
-                        traced += 1;
-                    }
-                }
-            } else {
-                for i in x..end {
-                    let k = i as usize;
-                    if masks[k] & moved != 0 {
-                        masks[k] = self.put(i, y, &mut row[k * 4..k * 4 + 4]);
-                        traced += 1;
-                    }
-                }
-            }
-            x = end;
-        }
-        traced
+        rm.begin(track);
+        rm
     }
 
     /// Whether pixel `(x, y)` of a one-sample picture differs from a 4-neighbour
@@ -229,39 +209,44 @@ impl<'a> Frame<'a> {
     /// The whole picture, rows in parallel or one after another (the same bytes):
     /// every pixel at every sample, or with adaptive anti-aliasing one centre
     /// sample first and then every sample at the edges of that picture. Returns it
-    /// with each pixel's motion cells (row-major).
-    pub(crate) fn image(&self, parallel: bool) -> (Image, Vec<Cells>) {
+    /// with each row's motion cells and segments (adaptive: cells only, as such
+    /// frames are never reused).
+    pub(crate) fn image(&self, parallel: bool) -> (Image, Vec<RowMotion>) {
         let mut img = Image {
             width: self.width,
             height: self.height,
             rgba: vec![0; self.width as usize * self.height as usize * 4],
         };
         let Some(edge) = self.edge else {
-            let masks = for_rows(&mut img, parallel, |y, row| {
+            let rows = for_rows(&mut img, parallel, |y, row| {
                 self.row_with(y, row, &self.offsets)
             });
-            return (img, masks.concat());
+            return (img, rows);
         };
-        let mut masks = for_rows(&mut img, parallel, |y, row| {
+        let mut rows = for_rows(&mut img, parallel, |y, row| {
             self.row_with(y, row, &[(0.5, 0.5)])
         });
         let base = img.rgba.clone();
         let edges = for_rows(&mut img, parallel, |y, row| {
+            let mut segs = Vec::new();
             (0..self.width)
                 .zip(row.chunks_exact_mut(4))
                 .map(|(x, px)| {
                     if self.is_edge(&base, x, y, edge) {
-                        self.put(x, y, px)
+                        segs.clear();
+                        self.put(x, y, px, &mut segs)
                     } else {
                         0
                     }
                 })
                 .collect::<Vec<Cells>>()
         });
-        for (m, e) in masks.iter_mut().zip(edges) {
-            m.iter_mut().zip(e).for_each(|(a, b)| *a |= b);
+        for (m, e) in rows.iter_mut().zip(edges) {
+            m.cells.iter_mut().zip(e).for_each(|(a, b)| *a |= b);
+            m.start.clear();
+            m.segs.clear();
         }
-        (img, masks.concat())
+        (img, rows)
     }
 }
 

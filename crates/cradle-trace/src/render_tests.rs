@@ -1,6 +1,9 @@
-//! Packets in tracked frames note the motion cells the scalar path notes.
+//! Packets in tracked frames note the motion cells and segments the scalar path
+//! notes.
 
 use super::{Frame, RenderOptions};
+use crate::motion::Seg;
+use crate::retrace::RowMotion;
 use crate::scene::{Camera, Light, Material, Object, Scene, Shape};
 use glam::Vec3;
 
@@ -67,13 +70,38 @@ fn packets_note_the_same_motion_cells_as_the_scalar_path() {
         adaptive: None,
         motion_bounds: Some((Vec3::new(-0.3, 0.0, -0.1), Vec3::new(0.3, 0.3, 0.1))),
     };
-    let (fast_img, fast) = Frame::new(&scene, RenderOptions::FAST, true).image(false);
-    let (full_img, full) = Frame::new(&scene, RenderOptions::FULL, true).image(false);
+    let (fast_img, fast_rows) = Frame::new(&scene, RenderOptions::FAST, true).image(false);
+    let (full_img, full_rows) = Frame::new(&scene, RenderOptions::FULL, true).image(false);
     assert!(fast_img == full_img, "the same picture");
+    let cells = |rows: &[RowMotion]| {
+        rows.iter()
+            .flat_map(|r| r.cells.clone())
+            .collect::<Vec<_>>()
+    };
+    let (fast, full) = (cells(&fast_rows), cells(&full_rows));
     let differing = fast.iter().zip(&full).filter(|(a, b)| a != b).count();
     assert_eq!(differing, 0, "pixels whose motion cells differ");
     assert!(
         full.iter().filter(|&&m| m != 0).count() > 1000,
         "the motion box is seen"
     );
+    // And the same segments, pixel by pixel (in any order).
+    let key = |s: &Seg| [s.a.x, s.a.y, s.a.z, s.b.x, s.b.y, s.b.z].map(f32::to_bits);
+    let mut segments = 0;
+    for (a, b) in fast_rows.iter().zip(&full_rows) {
+        assert_eq!(a.start.len(), a.cells.len() + 1);
+        for k in 0..a.cells.len() {
+            let sorted = |r: &RowMotion| {
+                let mut v: Vec<_> = r.segs[r.start[k] as usize..r.start[k + 1] as usize]
+                    .iter()
+                    .map(key)
+                    .collect();
+                v.sort_unstable();
+                v
+            };
+            assert_eq!(sorted(a), sorted(b), "pixel {k}: segments differ");
+            segments += b.start[k + 1] - b.start[k];
+        }
+    }
+    assert!(segments > 2000, "{segments} segments");
 }

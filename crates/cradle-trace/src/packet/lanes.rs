@@ -307,7 +307,7 @@ impl Packet<'_, '_> {
                 self.note(i, &mirror, f32::INFINITY);
                 return bg;
             }
-            let mut motion = Motion::new(self.motion);
+            let mut motion = Motion::with(self.motion, self.scratch.take());
             let c = reflect(
                 self.p,
                 &mirror,
@@ -318,11 +318,15 @@ impl Packet<'_, '_> {
                 &mut motion,
                 tile,
             );
-            if self.motion.is_some() && motion.mask != 0 {
+            if self.motion.is_some() {
                 let mut m = self.marks.get();
                 m[i] |= motion.mask;
                 self.marks.set(m);
+                let mut segs = self.segs.borrow_mut();
+                segs.extend(motion.segs.drain(..).map(|s| (i as u8, s)));
             }
+            motion.segs.clear();
+            self.scratch.set(motion.segs);
             c
         });
         V8 {
