@@ -74,10 +74,11 @@ fn moved(grid: &MotionGrid, before: &Scene, after: &Scene) -> Moved {
         .filter(|(a, b)| a.moving && a.shape != b.shape)
         .flat_map(|(a, b)| [&a.shape, &b.shape]);
     for s in shapes {
-        out.cells |= shape_cells(grid, s);
+        let cells = shape_cells(grid, s);
+        out.cells |= cells;
         if let Some(n) = Near::of(s) {
             (out.lo, out.hi) = (out.lo.min(n.lo()), out.hi.max(n.hi()));
-            out.near.push(n);
+            out.near.push((cells, n));
         } else {
             // A moving plane (none is): every segment may meet it.
             out.cells = Cells::MAX;

@@ -51,7 +51,8 @@ impl RowMotion {
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Moved {
     pub(crate) cells: Cells,
-    pub(crate) near: Vec<Near>,
+    /// Each shape with its own cells.
+    pub(crate) near: Vec<(Cells, Near)>,
     /// The box around every `near`.
     pub(crate) lo: Vec3,
     pub(crate) hi: Vec3,
@@ -62,15 +63,20 @@ pub(crate) struct Moved {
 impl Moved {
     /// Whether pixel `k` of `rm` may have changed.
     fn touches(&self, rm: &RowMotion, k: usize) -> bool {
-        if rm.cells[k] & self.cells == 0 {
+        let cells = rm.cells[k] & self.cells;
+        if cells == 0 {
             return false;
         }
         if rm.start.is_empty() || self.coarse {
             return true;
         }
-        rm.of(k)
-            .iter()
-            .any(|s| self.near.iter().any(|n| n.meets(s)))
+        // A segment near the moved shapes' box, tested against the shapes in
+        // cells the pixel's rays passed.
+        rm.of(k).iter().any(|s| {
+            s.a.max(s.b).cmpge(self.lo).all()
+                && s.a.min(s.b).cmple(self.hi).all()
+                && self.near.iter().any(|(c, n)| c & cells != 0 && n.meets(s))
+        })
     }
 }
 
@@ -94,6 +100,10 @@ impl Frame<'_> {
         let track = !rm.start.is_empty();
         let mut old = std::mem::replace(rm, RowMotion::new(0, track));
         rm.cells = std::mem::take(&mut old.cells);
+        if track {
+            rm.start.reserve(width + 1);
+            rm.segs.reserve(old.segs.len() + old.segs.len() / 4);
+        }
         let packets = self.packets(self.offsets());
         let mut traced = 0;
         let mut x = 0;
