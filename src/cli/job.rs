@@ -275,10 +275,7 @@ fn bench_stress_scale(a: &BenchStressArgs) -> Result<f64, InputError> {
     flag_value("--scale", a.scale, ok, "0.01..=1000")
 }
 
-/// Checks `bench rocking`'s flags.
-///
-/// # Errors
-/// A flag out of range.
+/// Checks `bench rocking`'s flags (an error for one out of range).
 fn bench_rocking_duration(a: &BenchRockingArgs) -> Result<f64, InputError> {
     let ok = a.duration.is_finite() && (1.0..=3600.0).contains(&a.duration);
     flag_value("--duration", a.duration, ok, "1..=3600 (s)")
