@@ -185,3 +185,16 @@ fn hertz_contact_is_accepted_and_elastic_only() {
         "{msg}"
     );
 }
+
+#[test]
+fn text_with_wide_characters_before_a_colon_is_an_error_not_a_panic() {
+    // Found by the fuzz test: naming the key before an error cut the text inside
+    // a character wider than one byte.
+    for text in [
+        "/*\u{fffc}:/a",
+        "(cradle: (b\u{e9}\u{2192}: x))",
+        "(\u{1f600}: 1)",
+    ] {
+        assert!(parse(text, "wide.ron").is_err(), "{text:?}");
+    }
+}

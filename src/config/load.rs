@@ -168,9 +168,12 @@ fn syntax_message(src: &str, (line, col): (usize, usize), message: &str) -> Stri
             return None;
         }
         let name = head.trim_end();
+        // After the last character that is not part of a key (any width).
         let start = name
-            .rfind(|c: char| !(c.is_alphanumeric() || c == '_'))
-            .map_or(0, |i| i + 1);
+            .char_indices()
+            .rev()
+            .find(|&(_, c)| !(c.is_alphanumeric() || c == '_'))
+            .map_or(0, |(i, c)| i + c.len_utf8());
         Some(&name[start..]).filter(|k| !k.is_empty())
     });
     match key {
