@@ -8,7 +8,7 @@
 
 use super::bvh::Bvh;
 use super::geometry::Aabb;
-use super::prepared::bounds;
+use super::prepared::{Geom, bounds};
 use super::scene::{Light, Shape};
 use super::wide::WideBoxes;
 use glam::Vec3;
@@ -165,5 +165,21 @@ impl Casters {
         };
         let (all, others) = &self.lists.get(light)?[piece];
         Some(if outside { others } else { all })
+    }
+}
+
+/// Whether `p` lies clearly outside the shape `g` (by more than 1e-5 m, half the
+/// offset secondary rays start at): only then does a shadow ray from a point met
+/// from outside skip the object itself. A start inside it (a ray that began in a
+/// touching neighbour met it from within, by rounding, as "outside") tests it, as
+/// the reference does.
+pub(crate) fn clear_of(g: &Geom, p: Vec3) -> bool {
+    const MARGIN: f32 = 1e-5;
+    match *g {
+        Geom::Sphere { centre, radius } => {
+            (p - centre).length_squared() > (radius + MARGIN) * (radius + MARGIN)
+        }
+        Geom::Cylinder(ref c) => c.clear_of(p, MARGIN),
+        Geom::Plane { .. } => true,
     }
 }

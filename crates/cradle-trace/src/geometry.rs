@@ -61,6 +61,18 @@ pub struct Cylinder {
 }
 
 impl Cylinder {
+    /// Whether `p` lies farther than `margin` outside the cylinder (beyond a cap,
+    /// or off the axis by more than the radius).
+    #[must_use]
+    pub fn clear_of(&self, p: Vec3, margin: f32) -> bool {
+        let s = (p - self.a).dot(self.u);
+        if s < -margin || s > self.len + margin {
+            return true;
+        }
+        let off = p - self.a - self.u * s;
+        off.length_squared() > (self.radius + margin) * (self.radius + margin)
+    }
+
     /// The cylinder from `a` to `b`.
     #[must_use]
     pub fn new(a: Vec3, b: Vec3, radius: f32) -> Self {

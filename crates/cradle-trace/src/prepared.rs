@@ -3,7 +3,7 @@
 //! hit, any hit).
 
 use super::bvh::Bvh;
-use super::casters::Casters;
+use super::casters::{Casters, clear_of};
 use super::geometry::{Aabb, Cylinder, Ray, hit_plane, hit_sphere};
 use super::scene::{Scene, Shape};
 use super::shadow::Footprints;
@@ -319,11 +319,10 @@ impl<'a> Prepared<'a> {
         ray: &Ray,
         t_max: f32,
     ) -> bool {
-        if let Some(list) = self
-            .casters
-            .as_ref()
-            .and_then(|c| c.get(from)?.as_ref()?.at(light, ray.origin, outside))
-        {
+        if let Some(list) = self.casters.as_ref().and_then(|c| {
+            let clear = outside && clear_of(self.geom(from), ray.origin);
+            c.get(from)?.as_ref()?.at(light, ray.origin, clear)
+        }) {
             if self.occluded_by_planes(ray, t_max) {
                 return true;
             }
