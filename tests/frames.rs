@@ -225,6 +225,38 @@ fn incremental_frames_equal_full_renders_over_300_frames_of_a_swing() {
 }
 
 #[test]
+fn anti_aliased_incremental_frames_equal_full_renders_over_300_frames() {
+    // Adaptive anti-aliasing: an edge depends on the neighbours' colours, so a
+    // frame re-tests the edges around every changed pixel and supersamples again
+    // the edges whose samples' rays come near a moved object.
+    use newtons_cradle::trace::{Incremental, RenderOptions, render_serial_with};
+    for (balls, lift, samples, threshold) in [(5, 1, 4, 0.05), (5, 2, 16, 0.02), (20, 3, 4, 0.1)] {
+        let mut config = small_cradle((160, 80), balls, lift, 0.0);
+        config.render.samples = samples;
+        config.render.adaptive = true;
+        config.render.adaptive_threshold = threshold;
+        let mut world = CradleWorld::new(&config);
+        let mut inc = Incremental::new();
+        for n in 0..300 {
+            world.show_at(f64::from(n) / 60.0);
+            let scene = world.scene();
+            let full = render_serial_with(scene, RenderOptions::FULL);
+            let frame = inc.render(scene);
+            assert!(
+                *frame == full,
+                "{balls} balls, {samples} samples: frame {n} differs"
+            );
+            assert_eq!(inc.last_was_full(), n == 0, "only the first frame is full");
+        }
+        let share = inc.dynamic_share();
+        assert!(
+            share > 0.0 && share < 0.5,
+            "{balls} balls: re-traces {share:.2}"
+        );
+    }
+}
+
+#[test]
 fn incremental_renders_in_full_when_anything_static_changes() {
     use newtons_cradle::trace::Incremental;
     let mut world = CradleWorld::new(&Config::default());

@@ -2,6 +2,7 @@
 //! pixels whose rays passed where moving objects were or are, and keeps every
 //! other pixel's bytes, so the result equals a full render byte for byte.
 
+use super::adaptive::Layers;
 use super::color::Image;
 use super::motion::{Cells, MotionGrid, Near};
 use super::render::{Frame, RenderOptions};
@@ -57,6 +58,9 @@ pub struct Incremental {
     full: bool,
     /// Pixels re-traced by the last frame.
     retraced: usize,
+    /// With adaptive anti-aliasing: the layers its frames keep (then `rows` is
+    /// unused).
+    layers: Option<Layers>,
 }
 
 /// The objects that moved from `before` to `after` (same objects in the same
@@ -114,11 +118,10 @@ impl Incremental {
     /// Renders `scene` on the current rayon pool and returns the picture.
     pub fn render(&mut self, scene: &Scene) -> &Image {
         let frame = Frame::new(scene, RenderOptions::FAST, true);
-        // With adaptive anti-aliasing a pixel's sampling depends on its neighbours'
-        // colours, which motion changes: those frames are traced in full.
+        let adaptive = frame.edge();
         let reuse = scene.motion_bounds.is_some()
-            && scene.adaptive.is_none_or(|_| scene.samples <= 1)
             && self.image.is_some()
+            && adaptive.is_some() == self.layers.is_some()
             && self
                 .last
                 .as_ref()
@@ -127,18 +130,31 @@ impl Incremental {
         if let (true, Some(grid), Some(last)) = (reuse, frame.motion, self.last.as_ref()) {
             let moved = moved(&grid, last, scene);
             let img = self.image.as_mut().expect("checked above");
-            let stride = img.width as usize * 4;
-            self.retraced = img
-                .rgba
-                .par_chunks_exact_mut(stride)
-                .zip(self.rows.par_iter_mut())
-                .enumerate()
-                .map(|(y, (row, rm))| frame.retrace_row(y as u32, row, rm, &moved))
-                .sum();
+            if let (Some(threshold), Some(layers)) = (adaptive, self.layers.as_mut()) {
+                self.retraced = frame.adaptive_next(threshold, layers, img, &moved);
+            } else {
+                let stride = img.width as usize * 4;
+                self.retraced = img
+                    .rgba
+                    .par_chunks_exact_mut(stride)
+                    .zip(self.rows.par_iter_mut())
+                    .enumerate()
+                    .map(|(y, (row, rm))| {
+                        frame.retrace_row(y as u32, row, rm, (&moved, frame.offsets()))
+                    })
+                    .sum();
+            }
         } else {
-            let (img, rows) = frame.image(true);
+            let (img, rows, layers) = if let Some(threshold) = adaptive {
+                let (img, layers) = frame.adaptive_full(threshold);
+                (img, Vec::new(), Some(layers))
+            } else {
+                let (img, rows) = frame.image(true);
+                (img, rows, None)
+            };
             self.retraced = img.width as usize * img.height as usize;
             self.rows = rows;
+            self.layers = layers;
             self.image = Some(img);
             self.full = true;
         }

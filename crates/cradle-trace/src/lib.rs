@@ -10,10 +10,11 @@
 //! - [`camera`], [`geometry`], [`shade`]: rays, hit tests and Whitted shading;
 //! - [`sampling`], [`render`]: sample offsets and the serial and parallel render
 //!   twins ([`render`], [`render_serial`]);
-//! - [`motion`], `retrace`, [`incremental`]: motion cells and ray segments, and
-//!   incremental frames ([`Incremental`]);
+//! - [`motion`], `retrace`, [`incremental`], `adaptive`: motion cells and ray
+//!   segments, and incremental frames ([`Incremental`]), anti-aliased too;
 //! - [`color`]: linear colour to sRGB bytes in an RGBA8 [`Image`].
 
+mod adaptive;
 pub mod bvh;
 pub mod camera;
 mod casters;

@@ -120,6 +120,28 @@ impl<'a> Frame<'a> {
         mask
     }
 
+    /// Adaptive anti-aliasing's edge threshold (a byte difference), if on.
+    pub(crate) fn edge(&self) -> Option<f32> {
+        self.edge
+    }
+
+    /// Picture height (px).
+    pub(crate) fn height(&self) -> u32 {
+        self.height
+    }
+
+    /// Traces pixel `(x, y)` at `offsets` into `px`: its motion cells; its
+    /// segments go to `segs`.
+    pub(crate) fn put_at(
+        &self,
+        (x, y): (u32, u32),
+        px: &mut [u8],
+        offsets: &[(f32, f32)],
+        segs: &mut Vec<Seg>,
+    ) -> Cells {
+        self.put_with((x, y), px, offsets, segs)
+    }
+
     /// Traces pixel `(x, y)` into `px`: its motion cells; its segments go to `segs`.
     pub(crate) fn put(&self, x: u32, y: u32, px: &mut [u8], segs: &mut Vec<Seg>) -> Cells {
         self.put_with((x, y), px, &self.offsets, segs)
@@ -153,7 +175,7 @@ impl<'a> Frame<'a> {
     /// Traces a whole row with `offsets`; returns each pixel's motion cells and
     /// segments (segments only in a tracked frame). Centre samples go in packets
     /// where the tile allows.
-    fn row_with(&self, y: u32, out: &mut [u8], offsets: &[(f32, f32)]) -> RowMotion {
+    pub(crate) fn row_with(&self, y: u32, out: &mut [u8], offsets: &[(f32, f32)]) -> RowMotion {
         let track = self.motion.is_some();
         let mut rm = RowMotion::new(self.width as usize, track);
         let packets = self.packets(offsets);
@@ -191,7 +213,7 @@ impl<'a> Frame<'a> {
 
     /// Whether pixel `(x, y)` of a one-sample picture differs from a 4-neighbour
     /// by more than `edge` in some channel.
-    fn is_edge(&self, base: &[u8], x: u32, y: u32, edge: f32) -> bool {
+    pub(crate) fn is_edge(&self, base: &[u8], x: u32, y: u32, edge: f32) -> bool {
         let at = |x: u32, y: u32| (y as usize * self.width as usize + x as usize) * 4;
         let here = &base[at(x, y)..at(x, y) + 3];
         let differs = |nx: u32, ny: u32| {
@@ -252,7 +274,7 @@ impl<'a> Frame<'a> {
 
 /// Runs `f(y, row)` over the rows of `img`, in parallel on the current rayon pool
 /// or serially, and collects what it returns per row.
-fn for_rows<R: Send>(
+pub(crate) fn for_rows<R: Send>(
     img: &mut Image,
     parallel: bool,
     f: impl Fn(u32, &mut [u8]) -> R + Sync,

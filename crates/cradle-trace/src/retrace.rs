@@ -41,7 +41,7 @@ impl RowMotion {
     }
 
     /// Pixel `k`'s segments.
-    fn of(&self, k: usize) -> &[Seg] {
+    pub(crate) fn of(&self, k: usize) -> &[Seg] {
         &self.segs[self.start[k] as usize..self.start[k + 1] as usize]
     }
 }
@@ -62,7 +62,7 @@ pub(crate) struct Moved {
 
 impl Moved {
     /// Whether pixel `k` of `rm` may have changed.
-    fn touches(&self, rm: &RowMotion, k: usize) -> bool {
+    pub(crate) fn touches(&self, rm: &RowMotion, k: usize) -> bool {
         let cells = rm.cells[k] & self.cells;
         if cells == 0 {
             return false;
@@ -81,16 +81,16 @@ impl Moved {
 }
 
 impl Frame<'_> {
-    /// Re-traces the pixels of row `y` that `moved` may have changed, in packets
-    /// where eight pixels in a row hold one such: a packet's bytes, cells and
-    /// segments are the scalar path's, and a pixel that did not change would get
-    /// its own again. Returns how many pixels it traced.
+    /// Re-traces the pixels of row `y` that `moved` may have changed, at samples
+    /// `offsets`, in packets where eight pixels in a row hold one such: a
+    /// packet's bytes, cells and segments are the scalar path's, and a pixel that
+    /// did not change would get its own again. Returns how many pixels it traced.
     pub(crate) fn retrace_row(
         &self,
         y: u32,
         row: &mut [u8],
         rm: &mut RowMotion,
-        moved: &Moved,
+        (moved, offsets): (&Moved, &[(f32, f32)]),
     ) -> usize {
         let width = self.width() as usize;
         let dirty: Vec<bool> = (0..width).map(|k| moved.touches(rm, k)).collect();
@@ -104,7 +104,7 @@ impl Frame<'_> {
             rm.start.reserve(width + 1);
             rm.segs.reserve(old.segs.len() + old.segs.len() / 4);
         }
-        let packets = self.packets(self.offsets());
+        let packets = self.packets(offsets);
         let mut traced = 0;
         let mut x = 0;
         while x < width {
@@ -143,7 +143,7 @@ impl Frame<'_> {
                     }
                     _ if dirty[k] => {
                         let px = &mut row[k * 4..k * 4 + 4];
-                        rm.cells[k] = self.put(k as u32, y, px, &mut rm.segs);
+                        rm.cells[k] = self.put_at((k as u32, y), px, offsets, &mut rm.segs);
                         traced += 1;
                     }
                     _ => {
