@@ -361,11 +361,13 @@ fn samples_and_aa_flags_set_the_anti_aliasing_and_check_their_range() {
         assert_eq!(o.status.code(), Some(0), "{extra:?}: {}", stderr(&o));
         std::fs::read(&png).expect("written")
     };
-    let plain = render("plain", &[]);
+    let default = render("default", &[]);
+    let plain = render("plain", &["--samples", "1"]);
     // One sample is no anti-aliasing, whichever scheme.
     assert_eq!(render("one", &["--samples", "1", "--aa", "uniform"]), plain);
     let uniform = render("uniform", &["--samples", "4", "--aa", "uniform"]);
     let adaptive = render("adaptive", &["--samples", "4", "--aa", "adaptive"]);
+    assert_eq!(default, adaptive, "the default: 4 samples at edges");
     assert_ne!(uniform, plain, "4 samples everywhere change the picture");
     assert_ne!(adaptive, plain, "4 samples at edges change the picture");
     assert_ne!(adaptive, uniform, "only the edges are supersampled");

@@ -146,7 +146,9 @@ fn bench_render_quality_rows_per_mode_and_depth() {
     ]);
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     let v = lines(&o);
-    assert_eq!(v.len(), 4 * 6, "4 modes x depths 0..=5");
+    assert_eq!(v.len(), 5 * 6, "5 modes x depths 0..=5");
+    // The default, adaptive 4, is among them.
+    assert!(v.iter().any(|r| r["mode"] == "adaptive 4"));
     for row in &v {
         assert!(row["rmse"].as_f64().is_some_and(|e| e >= 0.0), "{row}");
         assert!(

@@ -9,8 +9,12 @@ use newtons_cradle::scene::CradleWorld;
 use newtons_cradle::trace::{self, RenderOptions, Scene};
 
 /// The scene of `config` at simulated time `t`.
+/// The scene of `config` at time `t`, at one sample per pixel (packets trace the
+/// centre samples; anti-aliased frames are tested in frames.rs).
 fn scene_at(config: &Config, t: f64) -> Scene {
-    let mut world = CradleWorld::new(config);
+    let mut config = config.clone();
+    config.render.samples = 1;
+    let mut world = CradleWorld::new(&config);
     world.show_at(t);
     world.scene().clone()
 }

@@ -15,14 +15,14 @@ pub struct RenderConfig {
     pub height: u32,
     /// Reflection depth: mirror bounces after the primary hit, 0..=16. Default 3.
     pub max_depth: u32,
-    /// Samples per pixel, 1..=64. Default 1. With `adaptive`, only edge pixels
+    /// Samples per pixel, 1..=64. Default 4. With `adaptive`, only edge pixels
     /// get them.
     pub samples: u32,
     /// Adaptive anti-aliasing: one sample per pixel, then `samples` only where a
-    /// pixel differs from a neighbour by more than `adaptive_threshold`. Default false.
+    /// pixel differs from a neighbour by more than `adaptive_threshold`. Default true.
     pub adaptive: bool,
     /// Largest sRGB difference (0..=1, of any channel) between a pixel and its
-    /// 4-neighbours that adaptive anti-aliasing leaves alone. Default 0.05.
+    /// 4-neighbours that adaptive anti-aliasing leaves alone. Default 0.1.
     pub adaptive_threshold: f64,
     /// Tracing threads, 0..=256; 0 uses every core. Default 0.
     pub threads: usize,
@@ -36,9 +36,9 @@ impl Default for RenderConfig {
             width: 1200,
             height: 600,
             max_depth: 3,
-            samples: 1,
-            adaptive: false,
-            adaptive_threshold: 0.05,
+            samples: 4,
+            adaptive: true,
+            adaptive_threshold: 0.1,
             threads: 0,
             background: [0.05, 0.06, 0.08],
         }
