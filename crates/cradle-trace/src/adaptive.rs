@@ -86,28 +86,52 @@ impl Frame<'_> {
     ) -> usize {
         let (w, h) = (self.width() as usize, self.height() as usize);
         let stride = w * 4;
-        let before = layers.base.rgba.clone();
+        // The base layer, noting which pixels' bytes changed (rows no moved cell
+        // reaches are neither copied nor compared).
+        let mut changed = vec![false; w * h];
         let mut traced: usize = layers
             .base
             .rgba
             .par_chunks_exact_mut(stride)
             .zip(layers.base_rows.par_iter_mut())
+            .zip(changed.par_chunks_exact_mut(w))
             .enumerate()
-            .map(|(y, (row, rm))| self.retrace_row(y as u32, row, rm, (moved, &CENTRE)))
+            .map(|(y, ((row, rm), changed))| {
+                if rm.cells.iter().all(|c| c & moved.cells == 0) {
+                    return 0;
+                }
+                let before = row.to_vec();
+                let n = self.retrace_row(y as u32, row, rm, (moved, &CENTRE));
+                if n > 0 {
+                    let pairs = before.chunks_exact(4).zip(row.chunks_exact(4));
+                    changed
+                        .iter_mut()
+                        .zip(pairs)
+                        .for_each(|(c, (a, b))| *c = a != b);
+                }
+                n
+            })
             .sum();
         let base = &layers.base.rgba;
-        let changed: Vec<bool> = before
-            .par_chunks_exact(4)
-            .zip(base.par_chunks_exact(4))
-            .map(|(a, b)| a != b)
+        // Rows holding a changed pixel.
+        let row_changed: Vec<bool> = changed
+            .par_chunks_exact(w)
+            .map(|r| r.contains(&true))
             .collect();
         let old_edge = &layers.edge;
         let edge: Vec<bool> = (0..h)
             .into_par_iter()
             .flat_map_iter(|y| {
                 let changed = &changed;
+                // No changed pixel in this row or the rows beside it: the flags stay.
+                let quiet = !(row_changed[y]
+                    || (y > 0 && row_changed[y - 1])
+                    || (y + 1 < h && row_changed[y + 1]));
                 (0..w).map(move |x| {
                     let k = y * w + x;
+                    if quiet {
+                        return old_edge[k];
+                    }
                     let near = changed[k]
                         || (x > 0 && changed[k - 1])
                         || (x + 1 < w && changed[k + 1])
@@ -148,6 +172,9 @@ impl Frame<'_> {
         moved: &Moved,
     ) -> usize {
         let w = is.len();
+        if was == is && !changed.contains(&true) && rm.cells.iter().all(|c| c & moved.cells == 0) {
+            return 0;
+        }
         for x in 0..w {
             if !is[x] && (changed[x] || was[x]) {
                 row[x * 4..x * 4 + 4].copy_from_slice(&base[x * 4..x * 4 + 4]);
