@@ -7,7 +7,8 @@
 # Runs `bench render --threads 1 --mode full --width 600 --height 300` with
 # --frames 3 and with --frames 1 under callgrind and divides the difference by 2
 # frames and 180,000 pixels, so start-up and warm-up frames cancel out. Extra flags
-# (say `--balls 200 --lift 10`) go to both runs. Needs valgrind; uses
+# (say `--balls 200 --lift 10`) go to both runs. One sample per pixel (the packet
+# tracer's measure) unless the flags give `--samples`. Needs valgrind; uses
 # target/release/newtons-cradle (or $BIN), building it first when missing.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
@@ -22,6 +23,9 @@ count() {
     >/dev/null 2>"$out/log.$1"
   grep -o "Collected : [0-9]*" "$out/log.$1" | awk '{print $3}'
 }
+extra=("$@")
+[[ " $* " == *" --samples "* ]] || extra+=(--samples 1)
+set -- "${extra[@]}"
 one=$(count 1 "$@")
 three=$(count 3 "$@")
 awk -v a="$one" -v b="$three" 'BEGIN { printf "instructions per pixel: %.1f\n", (b - a) / 2 / 180000 }'
