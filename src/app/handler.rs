@@ -176,6 +176,14 @@ impl ApplicationHandler<UserEvent> for App {
             return;
         }
         event_loop.set_control_flow(ControlFlow::Wait);
+        // A view that moved lately is anti-aliased again once it rests.
+        if let Some(until) = self.session.settle() {
+            if std::time::Instant::now() < until {
+                event_loop.set_control_flow(ControlFlow::WaitUntil(until));
+            } else if surface.visible() {
+                surface.request_redraw();
+            }
+        }
         // Running: draw the next frame. Paused: wait for an event, using no CPU.
         if self.session.running() && surface.visible() {
             surface.request_redraw();

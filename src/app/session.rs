@@ -82,7 +82,13 @@ pub struct Session {
     dragging: Option<usize>,
     /// The control panel is shown.
     panel: bool,
+    /// When the view last moved: until it rests for [`VIEW_REST`], frames trace
+    /// one sample per pixel, so a drag of the view keeps up.
+    view_moved: Option<Instant>,
 }
+
+/// How long the view must rest before frames are anti-aliased again.
+pub const VIEW_REST: std::time::Duration = std::time::Duration::from_millis(250);
 
 /// The time rates `,` and `.` step through: 1/16x ..= 4x, by powers of two.
 pub const RATES: std::ops::RangeInclusive<i32> = -4..=2;
@@ -120,6 +126,7 @@ impl Session {
             orbit: Orbit::default(),
             dragging: None,
             panel: false,
+            view_moved: None,
         })
     }
 
@@ -199,8 +206,11 @@ impl Session {
         Effect::Redraw
     }
 
-    /// Changes the view by `change` (a drag or the wheel) and shows it.
+    /// Changes the view by `change` (a drag or the wheel) and shows it, at one
+    /// sample per pixel until the view rests ([`Self::settle`]).
     pub fn view(&mut self, change: ViewChange) {
+        self.view_moved = Some(Instant::now());
+        self.world.set_quality(1, None);
         match change {
             ViewChange::Turn(dx, dy) => self.orbit.turn(dx, dy),
             ViewChange::Pan(dx, dy) => self.orbit.pan(&self.config, dx, dy),
@@ -213,6 +223,20 @@ impl Session {
     fn show_view(&mut self) {
         self.world.set_camera(self.orbit.camera(&self.config));
         self.retrace = true;
+    }
+
+    /// When the view, moved lately, will have rested: the next frame from then on
+    /// is anti-aliased again (the window wakes for it).
+    #[must_use]
+    pub fn settle(&self) -> Option<Instant> {
+        self.view_moved.map(|t| t + VIEW_REST)
+    }
+
+    /// Traces at the config's anti-aliasing from the next frame on.
+    fn apply_quality(&mut self) {
+        let r = &self.config.render;
+        let adaptive = r.adaptive.then_some(r.adaptive_threshold as f32);
+        self.world.set_quality(r.samples, adaptive);
     }
 
     /// Hidden time does not count: the swing resumes where it stopped.
@@ -281,6 +305,11 @@ impl Session {
 
     /// Steps the world to `now` and traces, when something moves or changed.
     pub fn step(&mut self, now: Instant) {
+        if self.settle().is_some_and(|t| now >= t) {
+            self.view_moved = None;
+            self.apply_quality();
+            self.retrace = true;
+        }
         let running = self.running();
         if running || self.retrace || self.renderer.image().is_none() {
             let dt = self

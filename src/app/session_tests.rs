@@ -300,3 +300,27 @@ fn a_lossy_cradle_shows_the_energy_left_and_the_panel_sets_the_losses() {
     assert!(s.error().is_some_and(|e| e.contains("contact.dissipation")));
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn a_moving_view_traces_one_sample_per_pixel_until_it_rests() {
+    use crate::app::mouse::ViewChange;
+    let mut s = session();
+    let now = Instant::now();
+    s.step(now);
+    let aa = s.config().render.samples;
+    assert!(aa > 1, "the default anti-aliases");
+    assert_eq!(s.world.scene().samples, aa);
+    s.view(ViewChange::Turn(5.0, 0.0));
+    assert_eq!(s.world.scene().samples, 1, "a moving view: one sample");
+    let rest = s.settle().expect("the window wakes when it rests");
+    s.step(now + Duration::from_millis(100));
+    assert_eq!(s.world.scene().samples, 1, "not rested yet");
+    s.step(rest);
+    assert_eq!(s.world.scene().samples, aa, "rested: anti-aliased again");
+    assert_eq!(
+        s.world.scene().adaptive,
+        Some(0.1),
+        "at the config's threshold"
+    );
+    assert_eq!(s.settle(), None);
+}

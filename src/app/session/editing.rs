@@ -24,10 +24,8 @@ impl Session {
         match controls.apply_to(&self.config) {
             Ok(Apply::Same) => {}
             Ok(Apply::Live(c)) => {
-                let r = &c.render;
-                let adaptive = r.adaptive.then_some(r.adaptive_threshold as f32);
-                self.world.set_quality(r.samples, adaptive);
                 self.config = c;
+                self.apply_quality();
                 self.retrace = true;
                 self.error = None;
             }
