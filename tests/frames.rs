@@ -197,28 +197,36 @@ fn tile_culling_and_the_bvh_leave_every_byte_as_the_full_render_makes_it() {
     }
 }
 
+/// Renders 300 frames (5 s at 60 fps) of `config`'s swing incrementally and
+/// asserts each equals the full reference render byte for byte, only the first
+/// being traced in full; returns the last frame's share of re-traced pixels.
+fn incremental_swing_equals_full(config: &Config, what: &str) -> f64 {
+    use newtons_cradle::trace::{Incremental, RenderOptions, render_serial_with};
+    let mut world = CradleWorld::new(config);
+    let mut inc = Incremental::new();
+    for n in 0..300 {
+        world.show_at(f64::from(n) / 60.0);
+        let scene = world.scene();
+        let full = render_serial_with(scene, RenderOptions::FULL);
+        let frame = inc.render(scene);
+        assert!(*frame == full, "{what}: frame {n} differs");
+        assert_eq!(
+            inc.last_was_full(),
+            n == 0,
+            "{what}: only the first frame is traced in full"
+        );
+    }
+    inc.dynamic_share()
+}
+
 #[test]
 fn incremental_frames_equal_full_renders_over_300_frames_of_a_swing() {
-    use newtons_cradle::trace::{Incremental, RenderOptions, render_serial_with};
     for (balls, lift, gap) in [(5, 1, 0.0), (5, 2, 0.0), (20, 3, 0.0), (5, 1, 0.002)] {
-        let mut world = CradleWorld::new(&small_cradle((160, 80), balls, lift, gap));
-        let mut inc = Incremental::new();
-        for n in 0..300 {
-            world.show_at(f64::from(n) / 60.0);
-            let scene = world.scene();
-            let full = render_serial_with(scene, RenderOptions::FULL);
-            let frame = inc.render(scene);
-            assert!(
-                *frame == full,
-                "{balls} balls, {lift} lifted, gap {gap}: frame {n} differs"
-            );
-            assert_eq!(
-                inc.last_was_full(),
-                n == 0,
-                "only the first frame is traced in full"
-            );
-        }
-        let share = inc.dynamic_share();
+        let config = small_cradle((160, 80), balls, lift, gap);
+        let share = incremental_swing_equals_full(
+            &config,
+            &format!("{balls} balls, {lift} lifted, gap {gap}"),
+        );
         assert!(
             share > 0.0 && share < 0.9,
             "{balls} balls: re-traces {share:.2} of the pixels"
@@ -231,26 +239,13 @@ fn anti_aliased_incremental_frames_equal_full_renders_over_300_frames() {
     // Adaptive anti-aliasing: an edge depends on the neighbours' colours, so a
     // frame re-tests the edges around every changed pixel and supersamples again
     // the edges whose samples' rays come near a moved object.
-    use newtons_cradle::trace::{Incremental, RenderOptions, render_serial_with};
     for (balls, lift, samples, threshold) in [(5, 1, 4, 0.05), (5, 2, 16, 0.02), (20, 3, 4, 0.1)] {
         let mut config = small_cradle((160, 80), balls, lift, 0.0);
         config.render.samples = samples;
         config.render.adaptive = true;
         config.render.adaptive_threshold = threshold;
-        let mut world = CradleWorld::new(&config);
-        let mut inc = Incremental::new();
-        for n in 0..300 {
-            world.show_at(f64::from(n) / 60.0);
-            let scene = world.scene();
-            let full = render_serial_with(scene, RenderOptions::FULL);
-            let frame = inc.render(scene);
-            assert!(
-                *frame == full,
-                "{balls} balls, {samples} samples: frame {n} differs"
-            );
-            assert_eq!(inc.last_was_full(), n == 0, "only the first frame is full");
-        }
-        let share = inc.dynamic_share();
+        let share =
+            incremental_swing_equals_full(&config, &format!("{balls} balls, {samples} samples"));
         assert!(
             share > 0.0 && share < 0.5,
             "{balls} balls: re-traces {share:.2}"

@@ -108,7 +108,9 @@ impl<'a> Frame<'a> {
         (sum / offsets.len() as f32, motion.mask)
     }
 
-    fn put_with(
+    /// Traces pixel `(x, y)` at `offsets` into `px`: its motion cells; its
+    /// segments go to `segs`.
+    pub(crate) fn put_with(
         &self,
         (x, y): (u32, u32),
         px: &mut [u8],
@@ -128,18 +130,6 @@ impl<'a> Frame<'a> {
     /// Picture height (px).
     pub(crate) fn height(&self) -> u32 {
         self.height
-    }
-
-    /// Traces pixel `(x, y)` at `offsets` into `px`: its motion cells; its
-    /// segments go to `segs`.
-    pub(crate) fn put_at(
-        &self,
-        (x, y): (u32, u32),
-        px: &mut [u8],
-        offsets: &[(f32, f32)],
-        segs: &mut Vec<Seg>,
-    ) -> Cells {
-        self.put_with((x, y), px, offsets, segs)
     }
 
     /// Traces pixel `(x, y)` into `px`: its motion cells; its segments go to `segs`.

@@ -143,7 +143,7 @@ impl Frame<'_> {
                     }
                     _ if dirty[k] => {
                         let px = &mut row[k * 4..k * 4 + 4];
-                        rm.cells[k] = self.put_at((k as u32, y), px, offsets, &mut rm.segs);
+                        rm.cells[k] = self.put_with((k as u32, y), px, offsets, &mut rm.segs);
                         traced += 1;
                     }
                     _ => {
