@@ -91,8 +91,46 @@ impl DampedEngine {
                 continue;
             }
             let next = (h * (0.9 * err.max(1e-10).powf(-0.2)).min(5.0)).min(self.max_step());
-            return Some((h, y1, next));
+            return Some(self.to_onset(row, k_buf, (h, y1, next)));
         }
+    }
+
+    /// A step in which a pair starts to overlap is cut where it starts (to 1e-9
+    /// of the step, by bisection), and the next step is a contact phase's first:
+    /// stepping across the onset of the force's kink would leave its error to the
+    /// error estimate, which does not see it well.
+    fn to_onset(
+        &self,
+        row: &Row,
+        k_buf: &mut [Vec<f64>; 7],
+        (h, y1, next): (f64, Vec<f64>, f64),
+    ) -> (f64, Vec<f64>, f64) {
+        let n = self.touching.len() + 1;
+        let starts = |y: &[f64]| {
+            self.touching
+                .iter()
+                .enumerate()
+                .any(|(a, &was)| !was && row.overlap(&y[..n], a) > 0.0)
+        };
+        if !starts(&y1) {
+            return (h, y1, next);
+        }
+        let deriv = |y: &[f64], out: &mut [f64]| row.deriv(y, out);
+        let (mut lo, mut hi, mut at) = (0.0, h, y1);
+        while hi - lo > 1e-9 * h {
+            let mid = 0.5 * (lo + hi);
+            let y = dopri::step(&deriv, &self.y, mid, &self.scale, k_buf).0;
+            if starts(&y) {
+                (hi, at) = (mid, y);
+            } else {
+                lo = mid;
+            }
+        }
+        // The phases' first step: a hundredth of the time to close a thousandth
+        // of a radius at the fastest speed.
+        let w = self.scale[n] / TOL;
+        let first = (1e-5 * self.params.radius / (self.params.length * w)).min(next);
+        (hi, at, first)
     }
 
     /// Takes every step that ends at or before `t`; returns the state at `t` and
