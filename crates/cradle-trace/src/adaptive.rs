@@ -64,6 +64,7 @@ impl Frame<'_> {
                 }
             }
             rm.begin(true);
+            rm.seal();
             rm
         });
         let layers = Layers {
@@ -97,7 +98,7 @@ impl Frame<'_> {
             .zip(changed.par_chunks_exact_mut(w))
             .enumerate()
             .map(|(y, ((row, rm), changed))| {
-                if rm.cells.iter().all(|c| c & moved.cells == 0) {
+                if !rm.meets(moved.cells) {
                     return 0;
                 }
                 let before = row.to_vec();
@@ -172,7 +173,7 @@ impl Frame<'_> {
         moved: &Moved,
     ) -> usize {
         let w = is.len();
-        if was == is && !changed.contains(&true) && rm.cells.iter().all(|c| c & moved.cells == 0) {
+        if was == is && !changed.contains(&true) && !rm.meets(moved.cells) {
             return 0;
         }
         for x in 0..w {
@@ -200,6 +201,7 @@ impl Frame<'_> {
             }
         }
         rm.begin(true);
+        rm.seal();
         traced
     }
 }

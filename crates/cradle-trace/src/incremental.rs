@@ -4,7 +4,7 @@
 
 use super::adaptive::Layers;
 use super::color::Image;
-use super::motion::{Cells, MotionGrid, Near};
+use super::motion::{Cells, MotionGrid, Near, NearSet};
 use super::render::{Frame, RenderOptions};
 use super::retrace::{Moved, RowMotion};
 use super::scene::Scene;
@@ -77,18 +77,20 @@ fn moved(grid: &MotionGrid, before: &Scene, after: &Scene) -> Moved {
         .zip(&after.objects)
         .filter(|(a, b)| a.moving && a.shape != b.shape)
         .flat_map(|(a, b)| [&a.shape, &b.shape]);
+    let mut near = Vec::new();
     for s in shapes {
         let cells = shape_cells(grid, s);
         out.cells |= cells;
         if let Some(n) = Near::of(s) {
             (out.lo, out.hi) = (out.lo.min(n.lo()), out.hi.max(n.hi()));
-            out.near.push((cells, n));
+            near.push((cells, n));
         } else {
             // A moving plane (none is): every segment may meet it.
             out.cells = Cells::MAX;
             out.coarse = true;
         }
     }
+    out.near = NearSet::new(near);
     out
 }
 

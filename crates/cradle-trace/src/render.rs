@@ -198,6 +198,7 @@ impl<'a> Frame<'a> {
             x += 1;
         }
         rm.begin(track);
+        rm.seal();
         rm
     }
 
@@ -257,6 +258,7 @@ impl<'a> Frame<'a> {
             m.cells.iter_mut().zip(e).for_each(|(a, b)| *a |= b);
             m.start.clear();
             m.segs.clear();
+            m.seal();
         }
         (img, rows)
     }

@@ -3,20 +3,28 @@
 //! whose cells meet the moved objects' and one of whose segments comes near a
 //! moved object, where it was or where it is.
 
-use super::motion::{Cells, Near, Seg};
+use super::motion::{Cells, NearSet, Seg};
 use super::packet::LANES;
 use super::render::Frame;
 use glam::Vec3;
 
 /// What a row's rays passed: per pixel its motion cells, and its segments in the
 /// motion box, `segs[start[k]..start[k + 1]]` for pixel `k`. Without `start`
-/// (untracked frames, adaptive frames) only the cells count.
+/// (untracked frames, adaptive frames) only the cells count. `blocks` holds the
+/// union of the cells of each [`BLOCK`] pixels and `any` of them all, so that a
+/// frame skips the rows and blocks no moved cell reaches without reading every
+/// pixel's; [`RowMotion::seal`] sets them once the cells are written.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct RowMotion {
     pub(crate) cells: Vec<Cells>,
     pub(crate) start: Vec<u32>,
     pub(crate) segs: Vec<Seg>,
+    blocks: Vec<Cells>,
+    any: Cells,
 }
+
+/// Pixels per block of [`RowMotion::blocks`].
+const BLOCK: usize = 8;
 
 impl RowMotion {
     /// A record of `width` pixels to fill; `track`: with segments.
@@ -29,7 +37,26 @@ impl RowMotion {
                 Vec::new()
             },
             segs: Vec::new(),
+            blocks: Vec::new(),
+            any: 0,
         }
+    }
+
+    /// Notes the union of the cells of each block and of the row: call it once
+    /// the cells are written (before the row is next tested against motion).
+    pub(crate) fn seal(&mut self) {
+        self.blocks.clear();
+        self.blocks.extend(
+            self.cells
+                .chunks(BLOCK)
+                .map(|b| b.iter().fold(0, |a, c| a | c)),
+        );
+        self.any = self.blocks.iter().fold(0, |a, c| a | c);
+    }
+
+    /// Whether some pixel's cells meet `cells` (after [`Self::seal`]).
+    pub(crate) fn meets(&self, cells: Cells) -> bool {
+        self.any & cells != 0
     }
 
     /// Marks where the next pixel's segments begin (and, after the last, where
@@ -52,15 +79,36 @@ impl RowMotion {
 pub(crate) struct Moved {
     pub(crate) cells: Cells,
     /// Each shape with its own cells.
-    pub(crate) near: Vec<(Cells, Near)>,
+    pub(crate) near: NearSet,
     /// The box around every `near`.
     pub(crate) lo: Vec3,
     pub(crate) hi: Vec3,
-    /// A moved shape has no [`Near`] (a plane): the cells alone decide.
+    /// A moved shape has no [`crate::motion::Near`] (a plane): the cells alone
+    /// decide.
     pub(crate) coarse: bool,
 }
 
 impl Moved {
+    /// Per pixel of `rm` (sealed), whether it may have changed ([`Self::touches`]);
+    /// `None` when no pixel may. Blocks no moved cell reaches are skipped whole.
+    pub(crate) fn dirty(&self, rm: &RowMotion) -> Option<Vec<bool>> {
+        if !rm.meets(self.cells) {
+            return None;
+        }
+        let mut out = vec![false; rm.cells.len()];
+        let mut any = false;
+        for ((b, &c), block) in rm.blocks.iter().enumerate().zip(out.chunks_mut(BLOCK)) {
+            if c & self.cells == 0 {
+                continue;
+            }
+            for (i, dirty) in block.iter_mut().enumerate() {
+                *dirty = self.touches(rm, b * BLOCK + i);
+                any |= *dirty;
+            }
+        }
+        any.then_some(out)
+    }
+
     /// Whether pixel `k` of `rm` may have changed.
     pub(crate) fn touches(&self, rm: &RowMotion, k: usize) -> bool {
         let cells = rm.cells[k] & self.cells;
@@ -75,7 +123,7 @@ impl Moved {
         rm.of(k).iter().any(|s| {
             s.a.max(s.b).cmpge(self.lo).all()
                 && s.a.min(s.b).cmple(self.hi).all()
-                && self.near.iter().any(|(c, n)| c & cells != 0 && n.meets(s))
+                && self.near.meets(s, cells)
         })
     }
 }
@@ -93,10 +141,9 @@ impl Frame<'_> {
         (moved, offsets): (&Moved, &[(f32, f32)]),
     ) -> usize {
         let width = self.width() as usize;
-        let dirty: Vec<bool> = (0..width).map(|k| moved.touches(rm, k)).collect();
-        if !dirty.contains(&true) {
+        let Some(dirty) = moved.dirty(rm) else {
             return 0;
-        }
+        };
         let track = !rm.start.is_empty();
         let mut old = std::mem::replace(rm, RowMotion::new(0, track));
         rm.cells = std::mem::take(&mut old.cells);
@@ -156,6 +203,7 @@ impl Frame<'_> {
             x = end;
         }
         rm.begin(track);
+        rm.seal();
         traced
     }
 }

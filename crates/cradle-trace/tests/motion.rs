@@ -1,8 +1,10 @@
 //! The motion filter of incremental frames never drops a ray segment that meets
-//! a moved object: `Near::meets` says yes for every segment that comes within a
-//! ball or a string, found independently by sampling in f64.
+//! a moved object: `Near::meets`, and `NearSet::meets` over both shapes (in the
+//! AVX2 build and the portable one), say yes for every segment that comes within
+//! a ball or a string, found independently by sampling in f64.
 
-use cradle_trace::motion::{Near, Seg};
+use cradle_trace::motion::{Near, NearSet, Seg};
+use cradle_trace::packet::force_portable;
 use cradle_trace::scene::Shape;
 use glam::{DVec3, Vec3};
 
@@ -53,7 +55,9 @@ fn no_segment_that_meets_a_ball_or_a_string_is_dropped() {
         radius: 0.0006,
     };
     let (near_ball, near_string) = (Near::of(&ball).unwrap(), Near::of(&string).unwrap());
-    let (mut met, mut passed) = (0, 0);
+    // Each with a cell of its own: a segment that passed neither cell is let go.
+    let set = NearSet::new(vec![(1, near_ball), (2, near_string)]);
+    let (mut met, mut passed, mut set_passed) = (0, 0, 0);
     for i in 0..10_000 {
         // Half the segments aimed through the shapes' neighbourhood.
         let p = rng.point();
@@ -65,10 +69,24 @@ fn no_segment_that_meets_a_ball_or_a_string_is_dropped() {
         };
         let s = Seg { a: p, b: q };
         let (pd, qd) = (p.as_dvec3(), q.as_dvec3());
+        // The set, in both builds (they may differ only where a shape's own
+        // test is on its edge).
+        let in_set: Vec<bool> = [false, true]
+            .into_iter()
+            .map(|portable| {
+                force_portable(portable);
+                let m = set.meets(&s, 3);
+                assert!(!set.meets(&s, 4), "segment {i}: no cell in common");
+                m
+            })
+            .collect();
+        force_portable(false);
         // The ball: the distance from its centre.
         if to_segment(DVec3::new(0.01, -0.02, 0.0), pd, qd) <= 0.02 {
             met += 1;
             assert!(near_ball.meets(&s), "segment {i} meets the ball");
+            assert!(in_set[0] && in_set[1], "segment {i} meets the ball: set");
+            assert!(set.meets(&s, 1), "segment {i}: the ball's cell");
         }
         // The string: the least distance of the segment's samples to its axis.
         let (sa, sb) = (a.as_dvec3(), b.as_dvec3());
@@ -76,8 +94,12 @@ fn no_segment_that_meets_a_ball_or_a_string_is_dropped() {
         if to_axis <= 0.0006 {
             met += 1;
             assert!(near_string.meets(&s), "segment {i} meets the string");
+            assert!(in_set[0] && in_set[1], "segment {i} meets the string: set");
         } else if to_axis > 0.01 && !near_string.meets(&s) {
             passed += 1;
+        }
+        if !in_set[0] && !in_set[1] {
+            set_passed += 1;
         }
     }
     // Both kinds were tried, and the filter does filter.
@@ -86,4 +108,5 @@ fn no_segment_that_meets_a_ball_or_a_string_is_dropped() {
         passed > 2500,
         "{passed} segments far from the string passed"
     );
+    assert!(set_passed > 2500, "{set_passed} segments passed the set");
 }
