@@ -120,32 +120,29 @@ impl Frame<'_> {
             .map(|r| r.contains(&true))
             .collect();
         let old_edge = &layers.edge;
-        let edge: Vec<bool> = (0..h)
-            .into_par_iter()
-            .flat_map_iter(|y| {
-                let changed = &changed;
+        let mut edge = old_edge.clone();
+        edge.par_chunks_exact_mut(w)
+            .enumerate()
+            .for_each(|(y, flags)| {
                 // No changed pixel in this row or the rows beside it: the flags stay.
                 let quiet = !(row_changed[y]
                     || (y > 0 && row_changed[y - 1])
                     || (y + 1 < h && row_changed[y + 1]));
-                (0..w).map(move |x| {
+                if quiet {
+                    return;
+                }
+                for (x, flag) in flags.iter_mut().enumerate() {
                     let k = y * w + x;
-                    if quiet {
-                        return old_edge[k];
-                    }
                     let near = changed[k]
                         || (x > 0 && changed[k - 1])
                         || (x + 1 < w && changed[k + 1])
                         || (y > 0 && changed[k - w])
                         || (y + 1 < h && changed[k + w]);
                     if near {
-                        self.is_edge(base, x as u32, y as u32, threshold)
-                    } else {
-                        old_edge[k]
+                        *flag = self.is_edge(base, x as u32, y as u32, threshold);
                     }
-                })
-            })
-            .collect();
+                }
+            });
         traced += img
             .rgba
             .par_chunks_exact_mut(stride)

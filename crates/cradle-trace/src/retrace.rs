@@ -157,11 +157,13 @@ impl Frame<'_> {
         while x < width {
             let end = (x + LANES).min(width);
             if !dirty[x..end].contains(&true) {
-                for k in x..end {
-                    rm.begin(track);
-                    if track {
-                        rm.segs.extend_from_slice(old.of(k));
-                    }
+                if track {
+                    // The clean pixels' segments, in one copy.
+                    let (a, b) = (old.start[x], old.start[end]);
+                    let shift = rm.segs.len() as u32;
+                    rm.start
+                        .extend(old.start[x..end].iter().map(|&k| k - a + shift));
+                    rm.segs.extend_from_slice(&old.segs[a as usize..b as usize]);
                 }
                 x = end;
                 continue;
