@@ -102,6 +102,8 @@ pub struct Prepared<'a> {
     pub(crate) planes: Vec<usize>,
 }
 
+mod culling;
+
 impl<'a> Prepared<'a> {
     /// Bounds for every object of `scene`.
     #[must_use]
@@ -269,43 +271,6 @@ impl<'a> Prepared<'a> {
     #[must_use]
     pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
         self.occluded_by(ray, t_max, None)
-    }
-
-    /// Turns shadow culling ([`Footprints`]) on or off (off: every shadow ray
-    /// tests every object, the reference).
-    #[must_use]
-    pub fn with_shadow_culling(mut self, on: bool) -> Self {
-        let scene = self.scene;
-        self.footprints = on.then(|| {
-            self.planes
-                .iter()
-                .map(|&i| {
-                    let Shape::Plane { point, normal } = scene.objects[i].shape else {
-                        unreachable!("only planes are unbounded")
-                    };
-                    scene
-                        .lights
-                        .iter()
-                        .map(|l| Footprints::new(point, normal, l, &self.bounded))
-                        .collect()
-                })
-                .collect()
-        });
-        self.casters = on.then(|| {
-            // Beyond a few dozen objects, find each piece's casters through a
-            // hierarchy rather than by testing every object.
-            let boxes: Vec<Aabb> = self.bounded.iter().map(|&(_, b)| b).collect();
-            let bvh = (boxes.len() > 32).then(|| Bvh::new(&boxes));
-            scene
-                .objects
-                .iter()
-                .enumerate()
-                .map(|(i, o)| {
-                    Casters::new((i, &o.shape), &scene.lights, &self.bounded, bvh.as_ref())
-                })
-                .collect()
-        });
-        self
     }
 
     /// [`Self::occluded`] for a shadow ray towards light `light` from a point of

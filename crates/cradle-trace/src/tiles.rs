@@ -105,18 +105,31 @@ impl Tiles {
                     _ => None,
                 })
         };
-        let mirrors = planes()
-            .map(|(i, point, normal)| {
-                let image = objects
-                    .iter()
-                    .map(|&(k, b)| (k, b.map(|b| mirrored(b, point, normal))));
-                (i, lists(image, cam, width, height))
-            })
-            .collect();
-        let clear = planes()
-            .map(|(i, point, normal)| (i, clear_lights(p, i, cam, (point, normal), width, height)))
-            .collect();
-        let (lists, rects) = lists_and_rects(objects.into_iter(), cam, width, height);
+        // The three parts on two threads where the pool has them: the mirror
+        // lists and the primary lists on one, the shadow bits on the other.
+        let ((mirrors, (lists, rects)), clear) = rayon::join(
+            || {
+                let mirrors = planes()
+                    .map(|(i, point, normal)| {
+                        let image = objects
+                            .iter()
+                            .map(|&(k, b)| (k, b.map(|b| mirrored(b, point, normal))));
+                        (i, lists(image, cam, width, height))
+                    })
+                    .collect();
+                (
+                    mirrors,
+                    lists_and_rects(objects.iter().copied(), cam, width, height),
+                )
+            },
+            || {
+                planes()
+                    .map(|(i, point, normal)| {
+                        (i, clear_lights(p, i, cam, (point, normal), width, height))
+                    })
+                    .collect()
+            },
+        );
         Self {
             across: width.div_ceil(TILE),
             lists,

@@ -1,0 +1,60 @@
+//! Shadow culling's data for a frame's [`Prepared`] scene: per plane and light
+//! the footprints of the objects' shadows, and per object the objects that can
+//! block its shadow rays, built side by side.
+
+use super::Prepared;
+use crate::bvh::Bvh;
+use crate::casters::Casters;
+use crate::geometry::Aabb;
+use crate::scene::Shape;
+use crate::shadow::Footprints;
+
+impl Prepared<'_> {
+    /// Turns shadow culling ([`Footprints`]) on or off (off: every shadow ray
+    /// tests every object, the reference).
+    #[must_use]
+    pub fn with_shadow_culling(mut self, on: bool) -> Self {
+        if !on {
+            (self.footprints, self.casters) = (None, None);
+            return self;
+        }
+        // The footprints and the casters are independent: built side by side.
+        let this = &self;
+        let (footprints, casters) = rayon::join(|| this.footprints_of(), || this.casters_of());
+        (self.footprints, self.casters) = (Some(footprints), Some(casters));
+        self
+    }
+
+    /// Per plane, per light, the footprints of the bounded objects.
+    fn footprints_of(&self) -> Vec<Vec<Option<Footprints>>> {
+        let scene = self.scene;
+        self.planes
+            .iter()
+            .map(|&i| {
+                let Shape::Plane { point, normal } = scene.objects[i].shape else {
+                    unreachable!("only planes are unbounded")
+                };
+                scene
+                    .lights
+                    .iter()
+                    .map(|l| Footprints::new(point, normal, l, &self.bounded))
+                    .collect()
+            })
+            .collect()
+    }
+
+    /// Per object, the objects that can block its shadow rays.
+    fn casters_of(&self) -> Vec<Option<Casters>> {
+        let scene = self.scene;
+        // Beyond a few dozen objects, find each piece's casters through a
+        // hierarchy rather than by testing every object.
+        let boxes: Vec<Aabb> = self.bounded.iter().map(|&(_, b)| b).collect();
+        let bvh = (boxes.len() > 32).then(|| Bvh::new(&boxes));
+        scene
+            .objects
+            .iter()
+            .enumerate()
+            .map(|(i, o)| Casters::new((i, &o.shape), &scene.lights, &self.bounded, bvh.as_ref()))
+            .collect()
+    }
+}
