@@ -57,7 +57,22 @@ pub fn srgb8_lanes(linear: [f32; 8]) -> [u8; 8] {
         }
         step /= 2;
     }
-    pos.map(|p| p as u8)
+    bytes(pos)
+}
+
+/// The low byte of each lane (each lies in 0..=255): a plain loop, inlined,
+/// where `array::map` stays a call.
+#[expect(
+    clippy::inline_always,
+    reason = "inlined into each caller, so the AVX2 one compiles it for AVX2"
+)]
+#[inline(always)]
+fn bytes(v: [u32; 8]) -> [u8; 8] {
+    let mut out = [0; 8];
+    for (o, p) in out.iter_mut().zip(v) {
+        *o = p as u8;
+    }
+    out
 }
 
 /// [`srgb8_lanes`] with AVX2's gathers: each halving step loads the eight
@@ -78,7 +93,7 @@ pub(crate) fn srgb8_avx2(linear: [f32; 8]) -> [u8; 8] {
     let t = thresholds();
     // SAFETY: loads the eight floats of `linear`; each gather reads thresholds at
     // indices `pos + step - 1` <= 254 < 255, in bounds; the store writes the
-    // eight i32 of `out`.
+    // eight u32 of `out` (each lane's count, 0..=255).
     #[expect(unsafe_code, reason = "AVX2 loads, gathers and a store within bounds")]
     unsafe {
         let v = _mm256_loadu_ps(linear.as_ptr());
@@ -89,8 +104,8 @@ pub(crate) fn srgb8_avx2(linear: [f32; 8]) -> [u8; 8] {
             let le = _mm256_castps_si256(_mm256_cmp_ps::<_CMP_LE_OQ>(th, v));
             pos = _mm256_add_epi32(pos, _mm256_and_si256(le, _mm256_set1_epi32(step)));
         }
-        let mut out = [0i32; 8];
+        let mut out = [0u32; 8];
         _mm256_storeu_si256(out.as_mut_ptr().cast(), pos);
-        out.map(|p| p as u8)
+        bytes(out)
     }
 }

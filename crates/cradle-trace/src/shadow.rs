@@ -22,9 +22,10 @@ enum Source {
 }
 
 /// Where a shadow ray's start finds its candidates ([`Footprints::lookup`]).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub(crate) enum Lookup {
     /// Behind the plane or level with the light: every object is a candidate.
+    #[default]
     Unlit,
     /// Off the grid: only the objects that can shadow any point.
     Always,

@@ -262,7 +262,7 @@ pub(super) fn lookup(g: &GridView, x: &V8) -> [Lookup; LANES] {
         _mm256_storeu_si256(ix.as_mut_ptr().cast(), _mm256_cvttps_epi32(cx));
         _mm256_storeu_si256(iy.as_mut_ptr().cast(), _mm256_cvttps_epi32(cy));
     }
-    std::array::from_fn(|i| {
+    super::lanes(|i| {
         if unlit >> i & 1 != 0 {
             Lookup::Unlit
         } else if !g.gridded || inside >> i & 1 == 0 {
