@@ -178,13 +178,19 @@ impl Frame<'_> {
                 row[x * 4..x * 4 + 4].copy_from_slice(&base[x * 4..x * 4 + 4]);
             }
         }
+        // Only edge pixels have cells in `rm`, so its blocks skip the others.
+        let touched = moved.dirty(rm);
         let redo: Vec<bool> = (0..w)
-            .map(|x| is[x] && (!was[x] || moved.touches(rm, x)))
+            .map(|x| is[x] && (!was[x] || touched.as_ref().is_some_and(|t| t[x])))
             .collect();
         if !redo.contains(&true) && was == is {
             return 0;
         }
-        let old = std::mem::replace(rm, RowMotion::new(w, true));
+        // The new record reuses the old one's cells: kept where the pixel stays
+        // an edge and is not traced again, cleared where it is no edge.
+        let mut old = std::mem::replace(rm, RowMotion::new(0, true));
+        rm.cells = std::mem::take(&mut old.cells);
+        rm.start.reserve(w + 1);
         let mut traced = 0;
         for x in 0..w {
             rm.begin(true);
@@ -193,8 +199,9 @@ impl Frame<'_> {
                 rm.cells[x] = self.put(x as u32, y, px, &mut rm.segs);
                 traced += 1;
             } else if is[x] {
-                rm.cells[x] = old.cells[x];
                 rm.segs.extend_from_slice(old.of(x));
+            } else {
+                rm.cells[x] = 0;
             }
         }
         rm.begin(true);
