@@ -201,12 +201,6 @@ impl NearSet {
         Self { nears, chunks }
     }
 
-    /// Whether there is no shape.
-    #[must_use]
-    pub fn is_empty(&self) -> bool {
-        self.nears.is_empty()
-    }
-
     /// Whether segment `s` comes within one of the shapes whose cells meet
     /// `cells`: what [`Near::meets`] says of some such shape. Where the CPU has
     /// AVX2, a chunk's eight lanes first test at once the boxes and the distance
