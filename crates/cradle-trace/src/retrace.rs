@@ -110,7 +110,7 @@ impl Moved {
     }
 
     /// Whether pixel `k` of `rm` may have changed.
-    pub(crate) fn touches(&self, rm: &RowMotion, k: usize) -> bool {
+    fn touches(&self, rm: &RowMotion, k: usize) -> bool {
         let cells = rm.cells[k] & self.cells;
         if cells == 0 {
             return false;
