@@ -13,7 +13,7 @@
 
 use super::color::Image;
 use super::render::{Frame, for_rows};
-use super::retrace::{Moved, RowMotion};
+use super::retrace::{BLOCK, Moved, RowMotion};
 use rayon::prelude::*;
 
 /// The centre sample of the base layer.
@@ -87,60 +87,43 @@ impl Frame<'_> {
     ) -> usize {
         let (w, h) = (self.width() as usize, self.height() as usize);
         let stride = w * 4;
-        // The base layer, noting which pixels' bytes changed (rows no moved cell
-        // reaches are neither copied nor compared).
-        let mut changed = vec![false; w * h];
-        let mut traced: usize = layers
+        // The base layer, noting per row the pixels whose bytes changed.
+        let (counts, xs): (Vec<usize>, Vec<Vec<u32>>) = layers
             .base
             .rgba
             .par_chunks_exact_mut(stride)
             .zip(layers.base_rows.par_iter_mut())
-            .zip(changed.par_chunks_exact_mut(w))
             .enumerate()
-            .map(|(y, ((row, rm), changed))| {
-                if !rm.meets(moved.cells) {
-                    return 0;
-                }
-                let before = row.to_vec();
-                let n = self.retrace_row(y as u32, row, rm, (moved, &CENTRE));
-                if n > 0 {
-                    let pairs = before.chunks_exact(4).zip(row.chunks_exact(4));
-                    changed
-                        .iter_mut()
-                        .zip(pairs)
-                        .for_each(|(c, (a, b))| *c = a != b);
-                }
-                n
+            .map(|(y, (row, rm))| {
+                let mut xs = Vec::new();
+                let n = self.retrace_row(y as u32, row, rm, (moved, &CENTRE), Some(&mut xs));
+                (n, xs)
             })
-            .sum();
+            .unzip();
+        let mut traced: usize = counts.iter().sum();
+        let mut changed = vec![false; w * h];
+        for (y, row) in xs.iter().enumerate() {
+            for &x in row {
+                changed[y * w + x as usize] = true;
+            }
+        }
         let base = &layers.base.rgba;
-        // Rows holding a changed pixel.
-        let row_changed: Vec<bool> = changed
-            .par_chunks_exact(w)
-            .map(|r| r.contains(&true))
-            .collect();
+        // The edge test again at each changed pixel and its 4-neighbours.
         let old_edge = &layers.edge;
         let mut edge = old_edge.clone();
         edge.par_chunks_exact_mut(w)
             .enumerate()
             .for_each(|(y, flags)| {
-                // No changed pixel in this row or the rows beside it: the flags stay.
-                let quiet = !(row_changed[y]
-                    || (y > 0 && row_changed[y - 1])
-                    || (y + 1 < h && row_changed[y + 1]));
-                if quiet {
-                    return;
+                let mut again = |x: usize| {
+                    flags[x] = self.is_edge(base, x as u32, y as u32, threshold);
+                };
+                for &x in &xs[y] {
+                    let x = x as usize;
+                    (x.saturating_sub(1)..(x + 2).min(w)).for_each(&mut again);
                 }
-                for (x, flag) in flags.iter_mut().enumerate() {
-                    let k = y * w + x;
-                    let near = changed[k]
-                        || (x > 0 && changed[k - 1])
-                        || (x + 1 < w && changed[k + 1])
-                        || (y > 0 && changed[k - w])
-                        || (y + 1 < h && changed[k + w]);
-                    if near {
-                        *flag = self.is_edge(base, x as u32, y as u32, threshold);
-                    }
+                let beside = [y.checked_sub(1), Some(y + 1).filter(|&v| v < h)];
+                for v in beside.into_iter().flatten() {
+                    xs[v].iter().for_each(|&x| again(x as usize));
                 }
             });
         traced += img
@@ -150,7 +133,7 @@ impl Frame<'_> {
             .enumerate()
             .map(|(y, (row, rm))| {
                 let span = y * w..(y + 1) * w;
-                let rows = (&base[y * stride..(y + 1) * stride], &changed[span.clone()]);
+                let rows = (&base[y * stride..(y + 1) * stride], &xs[y][..]);
                 let flags = (&old_edge[span.clone()], &edge[span]);
                 self.final_row(y as u32, (row, rm), rows, flags, moved)
             })
@@ -160,22 +143,32 @@ impl Frame<'_> {
     }
 
     /// Row `y` of the picture (`row`, with its edge record `rm`): base colours
-    /// where not an edge, samples kept or traced again where an edge.
+    /// where not an edge, samples kept or traced again where an edge. `changed`:
+    /// the pixels whose base bytes changed.
     fn final_row(
         &self,
         y: u32,
         (row, rm): (&mut [u8], &mut RowMotion),
-        (base, changed): (&[u8], &[bool]),
+        (base, changed): (&[u8], &[u32]),
         (was, is): (&[bool], &[bool]),
         moved: &Moved,
     ) -> usize {
         let w = is.len();
-        if was == is && !changed.contains(&true) && !rm.meets(moved.cells) {
+        let same = was == is;
+        if same && changed.is_empty() && !rm.meets(moved.cells) {
             return 0;
         }
-        for x in 0..w {
-            if !is[x] && (changed[x] || was[x]) {
-                row[x * 4..x * 4 + 4].copy_from_slice(&base[x * 4..x * 4 + 4]);
+        let show_base = |row: &mut [u8], x: usize| {
+            row[x * 4..x * 4 + 4].copy_from_slice(&base[x * 4..x * 4 + 4]);
+        };
+        for &x in changed {
+            if !is[x as usize] {
+                show_base(row, x as usize);
+            }
+        }
+        if !same {
+            for x in (0..w).filter(|&x| was[x] && !is[x]) {
+                show_base(row, x);
             }
         }
         // Only edge pixels have cells in `rm`, so its blocks skip the others.
@@ -183,25 +176,33 @@ impl Frame<'_> {
         let redo: Vec<bool> = (0..w)
             .map(|x| is[x] && (!was[x] || touched.as_ref().is_some_and(|t| t[x])))
             .collect();
-        if !redo.contains(&true) && was == is {
+        if same && !redo.contains(&true) {
             return 0;
         }
         // The new record reuses the old one's cells: kept where the pixel stays
-        // an edge and is not traced again, cleared where it is no edge.
+        // an edge and is not traced again, cleared where it is no edge. Blocks
+        // with nothing to change keep their segments in one copy.
         let mut old = std::mem::replace(rm, RowMotion::new(0, true));
         rm.cells = std::mem::take(&mut old.cells);
         rm.start.reserve(w + 1);
         let mut traced = 0;
-        for x in 0..w {
-            rm.begin(true);
-            if redo[x] {
-                let px = &mut row[x * 4..x * 4 + 4];
-                rm.cells[x] = self.put(x as u32, y, px, &mut rm.segs);
-                traced += 1;
-            } else if is[x] {
-                rm.segs.extend_from_slice(old.of(x));
-            } else {
-                rm.cells[x] = 0;
+        for x0 in (0..w).step_by(BLOCK) {
+            let end = (x0 + BLOCK).min(w);
+            if !redo[x0..end].contains(&true) && was[x0..end] == is[x0..end] {
+                rm.keep(&old, x0..end);
+                continue;
+            }
+            for x in x0..end {
+                rm.begin(true);
+                if redo[x] {
+                    let px = &mut row[x * 4..x * 4 + 4];
+                    rm.cells[x] = self.put(x as u32, y, px, &mut rm.segs);
+                    traced += 1;
+                } else if is[x] {
+                    rm.segs.extend_from_slice(old.of(x));
+                } else {
+                    rm.cells[x] = 0;
+                }
             }
         }
         rm.begin(true);

@@ -142,7 +142,7 @@ impl Incremental {
                     .zip(self.rows.par_iter_mut())
                     .enumerate()
                     .map(|(y, (row, rm))| {
-                        frame.retrace_row(y as u32, row, rm, (&moved, frame.offsets()))
+                        frame.retrace_row(y as u32, row, rm, (&moved, frame.offsets()), None)
                     })
                     .sum();
             }

@@ -24,7 +24,7 @@ pub(crate) struct RowMotion {
 }
 
 /// Pixels per block of [`RowMotion::blocks`].
-const BLOCK: usize = 8;
+pub(crate) const BLOCK: usize = 8;
 
 impl RowMotion {
     /// A record of `width` pixels to fill; `track`: with segments.
@@ -70,6 +70,17 @@ impl RowMotion {
     /// Pixel `k`'s segments.
     pub(crate) fn of(&self, k: usize) -> &[Seg] {
         &self.segs[self.start[k] as usize..self.start[k + 1] as usize]
+    }
+
+    /// Appends the segments of `old`'s pixels `range` (the next ones of this
+    /// record, with segments) in one copy.
+    pub(crate) fn keep(&mut self, old: &Self, range: std::ops::Range<usize>) {
+        let (a, b) = (old.start[range.start], old.start[range.end]);
+        let shift = self.segs.len() as u32;
+        self.start
+            .extend(old.start[range].iter().map(|&k| k - a + shift));
+        self.segs
+            .extend_from_slice(&old.segs[a as usize..b as usize]);
     }
 }
 
@@ -139,13 +150,15 @@ impl Frame<'_> {
     /// `offsets`, in packets where eight pixels in a row hold at least
     /// [`PACKET_AT_LEAST`] such: a packet's bytes, cells and segments are the
     /// scalar path's, and a pixel that did not change would get its own again.
-    /// Returns how many pixels it traced.
+    /// Returns how many pixels it traced; with `changed`, appends the x of each
+    /// traced pixel whose bytes changed.
     pub(crate) fn retrace_row(
         &self,
         y: u32,
         row: &mut [u8],
         rm: &mut RowMotion,
         (moved, offsets): (&Moved, &[(f32, f32)]),
+        mut changed: Option<&mut Vec<u32>>,
     ) -> usize {
         let width = self.width() as usize;
         let Some(dirty) = moved.dirty(rm) else {
@@ -166,11 +179,7 @@ impl Frame<'_> {
             if !dirty[x..end].contains(&true) {
                 if track {
                     // The clean pixels' segments, in one copy.
-                    let (a, b) = (old.start[x], old.start[end]);
-                    let shift = rm.segs.len() as u32;
-                    rm.start
-                        .extend(old.start[x..end].iter().map(|&k| k - a + shift));
-                    rm.segs.extend_from_slice(&old.segs[a as usize..b as usize]);
+                    rm.keep(&old, x..end);
                 }
                 x = end;
                 continue;
@@ -181,10 +190,17 @@ impl Frame<'_> {
                         && dirty[x..end].iter().filter(|&&d| d).count() >= PACKET_AT_LEAST =>
                 {
                     let span = &mut row[x * 4..end * 4];
+                    let before: [u8; 4 * LANES] = span.try_into().expect("a run of LANES");
                     let (done, marks) = pk.run(x as u32, y, span);
                     for k in x..end {
                         if done & (1 << (k - x)) != 0 {
                             rm.cells[k] = marks[k - x];
+                            let i = (k - x) * 4;
+                            if let Some(c) = changed.as_deref_mut()
+                                && before[i..i + 4] != span[i..i + 4]
+                            {
+                                c.push(k as u32);
+                            }
                         }
                     }
                     Some((pk, done))
@@ -202,7 +218,13 @@ impl Frame<'_> {
                     }
                     _ if dirty[k] => {
                         let px = &mut row[k * 4..k * 4 + 4];
+                        let before: [u8; 4] = (&*px).try_into().expect("4 bytes");
                         rm.cells[k] = self.put_with((k as u32, y), px, offsets, &mut rm.segs);
+                        if let Some(c) = changed.as_deref_mut()
+                            && before != *px
+                        {
+                            c.push(k as u32);
+                        }
                         traced += 1;
                     }
                     _ => {
