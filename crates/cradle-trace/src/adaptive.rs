@@ -1,23 +1,39 @@
 //! Incremental frames with adaptive anti-aliasing. A full adaptive frame traces
-//! one centre sample per pixel (the base), then every sample where a pixel's base
-//! colour differs from a 4-neighbour's by more than the threshold (an edge). The
-//! incremental twin keeps both layers with their ray segments:
+//! one centre sample per pixel (the base), then the other samples where a pixel's
+//! base colour differs from a 4-neighbour's by more than the threshold (an edge):
+//! sample 0 of the pattern is the centre, so an edge pixel takes the base's
+//! linear colour for it and traces the rest, adding them in the same order as a
+//! uniform render. The incremental twin keeps both layers with their ray segments
+//! and the base's linear colours:
 //! 1. the base pixels a moved object may have changed are re-traced (as in a
 //!    frame without anti-aliasing);
 //! 2. the edge test is redone where a base pixel or a 4-neighbour changed bytes;
-//! 3. an edge pixel is supersampled again when it just became an edge or one of
-//!    its samples' segments comes near a moved object; any other pixel shows its
-//!    base colour.
+//! 3. an edge pixel is supersampled again when it just became an edge, its base
+//!    pixel was re-traced, or one of its other samples' segments comes near a
+//!    moved object; any other pixel shows its base colour.
 //!
 //! So each frame equals the full adaptive render byte for byte (tested).
 
 use super::color::Image;
+use super::motion::{Cells, Seg};
 use super::render::{Frame, for_rows};
-use super::retrace::{BLOCK, Moved, RowMotion};
+use super::retrace::{BLOCK, Moved, Notes, RowMotion};
+use glam::Vec3;
 use rayon::prelude::*;
 
 /// The centre sample of the base layer.
 const CENTRE: [(f32, f32); 1] = [(0.5, 0.5)];
+
+/// A row of the base layer as the final row sees it after a frame's re-trace.
+#[derive(Clone, Copy)]
+struct Base<'r> {
+    bytes: &'r [u8],
+    lin: &'r [Vec3],
+    /// The pixels traced again where motion may have changed them.
+    dirty: &'r [u32],
+    /// Those whose bytes changed.
+    changed: &'r [u32],
+}
 
 /// What an adaptive incremental frame keeps besides the picture.
 #[derive(Debug)]
@@ -28,7 +44,10 @@ pub(crate) struct Layers {
     base_rows: Vec<RowMotion>,
     /// Per pixel (row-major), whether it is an edge of `base`.
     edge: Vec<bool>,
-    /// Per row, the motion record of the edge pixels' samples (others: none).
+    /// Its linear colours (row-major): sample 0 of an edge pixel.
+    lin: Vec<Vec3>,
+    /// Per row, the motion record of the edge pixels' other samples (others:
+    /// none).
     edge_rows: Vec<RowMotion>,
 }
 
@@ -42,6 +61,21 @@ impl Frame<'_> {
             .collect()
     }
 
+    /// Supersamples edge pixel `at` into `px` from `centre`, the colour of its
+    /// sample 0 (the base layer's): its other samples' cells; their segments go
+    /// to `segs`.
+    pub(crate) fn supersample(
+        &self,
+        at: (u32, u32),
+        px: &mut [u8],
+        centre: Vec3,
+        segs: &mut Vec<Seg>,
+    ) -> Cells {
+        let offsets = self.offsets();
+        debug_assert_eq!(offsets[0], CENTRE[0], "sample 0 is the centre");
+        self.put(at, px, (Some(centre), &offsets[1..]), segs).0
+    }
+
     /// A full adaptive frame at `threshold`, and its layers.
     pub(crate) fn adaptive_full(&self, threshold: f32) -> (Image, Layers) {
         let (w, h) = (self.width(), self.height());
@@ -50,17 +84,25 @@ impl Frame<'_> {
             height: h,
             rgba: vec![0; w as usize * h as usize * 4],
         };
-        let base_rows = for_rows(&mut base, true, |y, row| self.row_with(y, row, &CENTRE));
+        let n = w as usize;
+        let mut lin = vec![Vec3::ZERO; n * h as usize];
+        let base_rows = base
+            .rgba
+            .par_chunks_exact_mut(n * 4)
+            .zip(lin.par_chunks_exact_mut(n))
+            .enumerate()
+            .map(|(y, (row, lin))| self.row_with(y as u32, row, &CENTRE, Some(lin)))
+            .collect();
         let edge = self.edges(&base.rgba, threshold);
         let mut img = base.clone();
-        let n = w as usize;
         let edge_rows = for_rows(&mut img, true, |y, row| {
-            let flags = &edge[y as usize * n..(y as usize + 1) * n];
+            let span = y as usize * n..(y as usize + 1) * n;
+            let (flags, lin) = (&edge[span.clone()], &lin[span]);
             let mut rm = RowMotion::new(n, true);
             for (x, px) in row.chunks_exact_mut(4).enumerate() {
                 rm.begin(true);
                 if flags[x] {
-                    rm.cells[x] = self.put(x as u32, y, px, &mut rm.segs);
+                    rm.cells[x] = self.supersample((x as u32, y), px, lin[x], &mut rm.segs);
                 }
             }
             rm.begin(true);
@@ -71,6 +113,7 @@ impl Frame<'_> {
             base,
             base_rows,
             edge,
+            lin,
             edge_rows,
         };
         (img, layers)
@@ -87,43 +130,47 @@ impl Frame<'_> {
     ) -> usize {
         let (w, h) = (self.width() as usize, self.height() as usize);
         let stride = w * 4;
-        // The base layer, noting per row the pixels whose bytes changed.
-        let (counts, xs): (Vec<usize>, Vec<Vec<u32>>) = layers
+        // The base layer, noting per row the pixels motion may have changed and
+        // those whose bytes changed.
+        let rows: Vec<_> = layers
             .base
             .rgba
             .par_chunks_exact_mut(stride)
             .zip(layers.base_rows.par_iter_mut())
+            .zip(layers.lin.par_chunks_exact_mut(w))
             .enumerate()
-            .map(|(y, (row, rm))| {
-                let mut xs = Vec::new();
-                let n = self.retrace_row(y as u32, row, rm, (moved, &CENTRE), Some(&mut xs));
-                (n, xs)
+            .map(|(y, ((row, rm), lin))| {
+                let mut notes = Notes {
+                    dirty: Vec::new(),
+                    changed: Vec::new(),
+                    lin,
+                };
+                let n = self.retrace_row(y as u32, row, rm, (moved, &CENTRE), Some(&mut notes));
+                (n, notes.dirty, notes.changed)
             })
-            .unzip();
-        let mut traced: usize = counts.iter().sum();
-        let mut changed = vec![false; w * h];
-        for (y, row) in xs.iter().enumerate() {
-            for &x in row {
-                changed[y * w + x as usize] = true;
-            }
-        }
-        let base = &layers.base.rgba;
+            .collect();
+        let mut traced: usize = rows.iter().map(|r| r.0).sum();
+        let (dirty, xs): (Vec<_>, Vec<_>) = rows.into_iter().map(|(_, d, c)| (d, c)).unzip();
+        let (base, lin) = (&layers.base.rgba, &layers.lin);
         // The edge test again at each changed pixel and its 4-neighbours.
         let old_edge = &layers.edge;
         let mut edge = old_edge.clone();
         edge.par_chunks_exact_mut(w)
             .enumerate()
             .for_each(|(y, flags)| {
-                let mut again = |x: usize| {
-                    flags[x] = self.is_edge(base, x as u32, y as u32, threshold);
-                };
-                for &x in &xs[y] {
-                    let x = x as usize;
-                    (x.saturating_sub(1)..(x + 2).min(w)).for_each(&mut again);
-                }
                 let beside = [y.checked_sub(1), Some(y + 1).filter(|&v| v < h)];
-                for v in beside.into_iter().flatten() {
-                    xs[v].iter().for_each(|&x| again(x as usize));
+                let mut at: Vec<usize> = beside
+                    .into_iter()
+                    .flatten()
+                    .flat_map(|v| xs[v].iter().map(|&x| x as usize))
+                    .collect();
+                for &x in &xs[y] {
+                    at.extend(x.saturating_sub(1) as usize..(x as usize + 2).min(w));
+                }
+                at.sort_unstable();
+                at.dedup();
+                for x in at {
+                    flags[x] = self.is_edge(base, x as u32, y as u32, threshold);
                 }
             });
         traced += img
@@ -133,9 +180,14 @@ impl Frame<'_> {
             .enumerate()
             .map(|(y, (row, rm))| {
                 let span = y * w..(y + 1) * w;
-                let rows = (&base[y * stride..(y + 1) * stride], &xs[y][..]);
+                let base = Base {
+                    bytes: &base[y * stride..(y + 1) * stride],
+                    lin: &lin[span.clone()],
+                    dirty: &dirty[y],
+                    changed: &xs[y],
+                };
                 let flags = (&old_edge[span.clone()], &edge[span]);
-                self.final_row(y as u32, (row, rm), rows, flags, moved)
+                self.final_row(y as u32, (row, rm), &base, flags, moved)
             })
             .sum::<usize>();
         layers.edge = edge;
@@ -143,23 +195,28 @@ impl Frame<'_> {
     }
 
     /// Row `y` of the picture (`row`, with its edge record `rm`): base colours
-    /// where not an edge, samples kept or traced again where an edge. `changed`:
-    /// the pixels whose base bytes changed.
+    /// where not an edge, samples kept or traced again where an edge.
     fn final_row(
         &self,
         y: u32,
         (row, rm): (&mut [u8], &mut RowMotion),
-        (base, changed): (&[u8], &[u32]),
+        base: &Base<'_>,
         (was, is): (&[bool], &[bool]),
         moved: &Moved,
     ) -> usize {
         let w = is.len();
         let same = was == is;
-        if same && changed.is_empty() && !rm.meets(moved.cells) {
+        let Base {
+            bytes,
+            lin,
+            dirty,
+            changed,
+        } = *base;
+        if same && dirty.is_empty() && !rm.meets(moved.cells) {
             return 0;
         }
         let show_base = |row: &mut [u8], x: usize| {
-            row[x * 4..x * 4 + 4].copy_from_slice(&base[x * 4..x * 4 + 4]);
+            row[x * 4..x * 4 + 4].copy_from_slice(&bytes[x * 4..x * 4 + 4]);
         };
         for &x in changed {
             if !is[x as usize] {
@@ -173,9 +230,13 @@ impl Frame<'_> {
         }
         // Only edge pixels have cells in `rm`, so its blocks skip the others.
         let touched = moved.dirty(rm);
-        let redo: Vec<bool> = (0..w)
+        let mut redo: Vec<bool> = (0..w)
             .map(|x| is[x] && (!was[x] || touched.as_ref().is_some_and(|t| t[x])))
             .collect();
+        // Sample 0 is the base pixel's: traced again there, so here too.
+        for &x in dirty {
+            redo[x as usize] |= is[x as usize];
+        }
         if same && !redo.contains(&true) {
             return 0;
         }
@@ -196,7 +257,7 @@ impl Frame<'_> {
                 rm.begin(true);
                 if redo[x] {
                     let px = &mut row[x * 4..x * 4 + 4];
-                    rm.cells[x] = self.put(x as u32, y, px, &mut rm.segs);
+                    rm.cells[x] = self.supersample((x as u32, y), px, lin[x], &mut rm.segs);
                     traced += 1;
                 } else if is[x] {
                     rm.segs.extend_from_slice(old.of(x));

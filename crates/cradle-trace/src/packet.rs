@@ -125,6 +125,8 @@ pub(crate) struct Packet<'a, 'p> {
     pub(crate) segs: RefCell<Vec<(u8, Seg)>>,
     /// A buffer lent to the scalar path's `Motion` for a lane.
     pub(crate) scratch: Cell<Vec<Seg>>,
+    /// Each lane's linear colour in the last packet (lanes it wrote).
+    pub(crate) colors: Cell<[Vec3; LANES]>,
 }
 
 impl Packet<'_, '_> {
@@ -304,6 +306,8 @@ impl Packet<'_, '_> {
             }
             srgb8_lanes(c)
         };
+        self.colors
+            .set(lanes(|i| Vec3::new(color.x[i], color.y[i], color.z[i])));
         let (r, g, b) = (srgb(color.x), srgb(color.y), srgb(color.z));
         let mut done = 0u8;
         for (i, px) in out.chunks_exact_mut(4).enumerate() {

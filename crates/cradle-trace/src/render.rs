@@ -87,12 +87,23 @@ impl<'a> Frame<'a> {
         }
     }
 
-    /// The linear colour of pixel `(x, y)` from samples at `offsets`, and the
-    /// motion cells its rays passed through; their segments in the motion box are
-    /// appended to `segs`.
-    fn pixel(&self, x: u32, y: u32, offsets: &[(f32, f32)], segs: &mut Vec<Seg>) -> (Vec3, Cells) {
+    /// The linear colour of pixel `(x, y)` from samples at `offsets` (after
+    /// `first`, the colour of a sample traced before, where given: the sum then
+    /// makes the same additions in the same order as with that sample first in
+    /// `offsets`), and the motion cells its rays passed through; their segments in
+    /// the motion box are appended to `segs`.
+    fn pixel(
+        &self,
+        (x, y): (u32, u32),
+        first: Option<Vec3>,
+        offsets: &[(f32, f32)],
+        segs: &mut Vec<Seg>,
+    ) -> (Vec3, Cells) {
         let mut motion = Motion::with(self.motion, std::mem::take(segs));
-        let sum: Vec3 = offsets
+        let n = offsets.len() + usize::from(first.is_some());
+        // `Sum` for Vec3 is this fold from zero.
+        let start = Vec3::ZERO + first.unwrap_or(Vec3::ZERO);
+        let sum = offsets
             .iter()
             .map(|&(dx, dy)| {
                 let ray = self.camera.ray(x as f32 + dx, y as f32 + dy);
@@ -103,23 +114,24 @@ impl<'a> Frame<'a> {
                     None => trace(&self.prepared, &ray, 0, 1.0, self.bound, &mut motion),
                 }
             })
-            .sum();
+            .fold(start, |a, b| a + b);
         *segs = motion.segs;
-        (sum / offsets.len() as f32, motion.mask)
+        (sum / n as f32, motion.mask)
     }
 
-    /// Traces pixel `(x, y)` at `offsets` into `px`: its motion cells; its
-    /// segments go to `segs`.
-    pub(crate) fn put_with(
+    /// Traces pixel `at` into `px` at `offsets` after sample `first` (see
+    /// [`Self::pixel`]): its motion cells and linear colour; its segments go to
+    /// `segs`.
+    pub(crate) fn put(
         &self,
-        (x, y): (u32, u32),
+        at: (u32, u32),
         px: &mut [u8],
-        offsets: &[(f32, f32)],
+        (first, offsets): (Option<Vec3>, &[(f32, f32)]),
         segs: &mut Vec<Seg>,
-    ) -> Cells {
-        let (c, mask) = self.pixel(x, y, offsets, segs);
+    ) -> (Cells, Vec3) {
+        let (c, mask) = self.pixel(at, first, offsets, segs);
         px.copy_from_slice(&[srgb8(c.x), srgb8(c.y), srgb8(c.z), 255]);
-        mask
+        (mask, c)
     }
 
     /// Adaptive anti-aliasing's edge threshold (a byte difference), if on.
@@ -130,11 +142,6 @@ impl<'a> Frame<'a> {
     /// Picture height (px).
     pub(crate) fn height(&self) -> u32 {
         self.height
-    }
-
-    /// Traces pixel `(x, y)` into `px`: its motion cells; its segments go to `segs`.
-    pub(crate) fn put(&self, x: u32, y: u32, px: &mut [u8], segs: &mut Vec<Seg>) -> Cells {
-        self.put_with((x, y), px, &self.offsets, segs)
     }
 
     /// Picture width (px).
@@ -159,13 +166,20 @@ impl<'a> Frame<'a> {
             marks: std::cell::Cell::new([0; LANES]),
             segs: std::cell::RefCell::new(Vec::new()),
             scratch: std::cell::Cell::new(Vec::new()),
+            colors: std::cell::Cell::new([Vec3::ZERO; LANES]),
         })
     }
 
     /// Traces a whole row with `offsets`; returns each pixel's motion cells and
     /// segments (segments only in a tracked frame). Centre samples go in packets
-    /// where the tile allows.
-    pub(crate) fn row_with(&self, y: u32, out: &mut [u8], offsets: &[(f32, f32)]) -> RowMotion {
+    /// where the tile allows. With `lin`, each pixel's linear colour goes there.
+    pub(crate) fn row_with(
+        &self,
+        y: u32,
+        out: &mut [u8],
+        offsets: &[(f32, f32)],
+        mut lin: Option<&mut [Vec3]>,
+    ) -> RowMotion {
         let track = self.motion.is_some();
         let mut rm = RowMotion::new(self.width as usize, track);
         let packets = self.packets(offsets);
@@ -177,24 +191,36 @@ impl<'a> Frame<'a> {
             {
                 let span = &mut out[x as usize * 4..(x + lanes) as usize * 4];
                 let (done, marks) = pk.run(x, y, span);
+                let colors = pk.colors.get();
                 for i in x..x + lanes {
                     rm.begin(track);
                     if done & (1 << (i - x)) != 0 {
                         rm.cells[i as usize] = marks[(i - x) as usize];
+                        if let Some(l) = lin.as_deref_mut() {
+                            l[i as usize] = colors[(i - x) as usize];
+                        }
                         if track {
                             pk.lane_segs((i - x) as usize, &mut rm.segs);
                         }
                         continue;
                     }
                     let px = &mut out[i as usize * 4..i as usize * 4 + 4];
-                    rm.cells[i as usize] = self.put_with((i, y), px, offsets, &mut rm.segs);
+                    let (cells, c) = self.put((i, y), px, (None, offsets), &mut rm.segs);
+                    rm.cells[i as usize] = cells;
+                    if let Some(l) = lin.as_deref_mut() {
+                        l[i as usize] = c;
+                    }
                 }
                 x += lanes;
                 continue;
             }
             rm.begin(track);
             let px = &mut out[x as usize * 4..x as usize * 4 + 4];
-            rm.cells[x as usize] = self.put_with((x, y), px, offsets, &mut rm.segs);
+            let (cells, c) = self.put((x, y), px, (None, offsets), &mut rm.segs);
+            rm.cells[x as usize] = cells;
+            if let Some(l) = lin.as_deref_mut() {
+                l[x as usize] = c;
+            }
             x += 1;
         }
         rm.begin(track);
@@ -232,13 +258,17 @@ impl<'a> Frame<'a> {
         };
         let Some(edge) = self.edge else {
             let rows = for_rows(&mut img, parallel, |y, row| {
-                self.row_with(y, row, &self.offsets)
+                self.row_with(y, row, &self.offsets, None)
             });
             return (img, rows);
         };
-        let mut rows = for_rows(&mut img, parallel, |y, row| {
-            self.row_with(y, row, &[(0.5, 0.5)])
-        });
+        let (mut rows, lin): (Vec<RowMotion>, Vec<Vec<Vec3>>) =
+            for_rows(&mut img, parallel, |y, row| {
+                let mut lin = vec![Vec3::ZERO; self.width as usize];
+                (self.row_with(y, row, &[(0.5, 0.5)], Some(&mut lin)), lin)
+            })
+            .into_iter()
+            .unzip();
         let base = img.rgba.clone();
         let edges = for_rows(&mut img, parallel, |y, row| {
             let mut segs = Vec::new();
@@ -247,7 +277,8 @@ impl<'a> Frame<'a> {
                 .map(|(x, px)| {
                     if self.is_edge(&base, x, y, edge) {
                         segs.clear();
-                        self.put(x, y, px, &mut segs)
+                        let centre = lin[y as usize][x as usize];
+                        self.supersample((x, y), px, centre, &mut segs)
                     } else {
                         0
                     }

@@ -139,6 +139,32 @@ impl Moved {
     }
 }
 
+/// What the base layer of an adaptive frame notes as [`Frame::retrace_row`]
+/// traces its pixels again.
+#[derive(Debug)]
+pub(crate) struct Notes<'r> {
+    /// The x of each pixel the motion may have changed (its colour traced again).
+    pub(crate) dirty: Vec<u32>,
+    /// The x of each traced pixel whose bytes changed.
+    pub(crate) changed: Vec<u32>,
+    /// The row's linear colours, written where traced.
+    pub(crate) lin: &'r mut [Vec3],
+}
+
+impl Notes<'_> {
+    /// Notes traced pixel `k`: `dirty` whether motion may have changed it, its
+    /// bytes `before` and `after`, its colour `c`.
+    fn note(&mut self, k: usize, dirty: bool, (before, after): (&[u8], &[u8]), c: Vec3) {
+        self.lin[k] = c;
+        if dirty {
+            self.dirty.push(k as u32);
+        }
+        if before != after {
+            self.changed.push(k as u32);
+        }
+    }
+}
+
 /// A run of eight pixels holding at least this many to re-trace goes as a packet
 /// (which traces all eight); fewer go one by one. Chosen by callgrind on the
 /// default swing: 1 (always a packet) 167M instructions an incremental frame at
@@ -150,15 +176,14 @@ impl Frame<'_> {
     /// `offsets`, in packets where eight pixels in a row hold at least
     /// [`PACKET_AT_LEAST`] such: a packet's bytes, cells and segments are the
     /// scalar path's, and a pixel that did not change would get its own again.
-    /// Returns how many pixels it traced; with `changed`, appends the x of each
-    /// traced pixel whose bytes changed.
+    /// Returns how many pixels it traced; with `notes`, notes each one there.
     pub(crate) fn retrace_row(
         &self,
         y: u32,
         row: &mut [u8],
         rm: &mut RowMotion,
         (moved, offsets): (&Moved, &[(f32, f32)]),
-        mut changed: Option<&mut Vec<u32>>,
+        mut notes: Option<&mut Notes<'_>>,
     ) -> usize {
         let width = self.width() as usize;
         let Some(dirty) = moved.dirty(rm) else {
@@ -192,14 +217,14 @@ impl Frame<'_> {
                     let span = &mut row[x * 4..end * 4];
                     let before: [u8; 4 * LANES] = span.try_into().expect("a run of LANES");
                     let (done, marks) = pk.run(x as u32, y, span);
+                    let colors = pk.colors.get();
                     for k in x..end {
                         if done & (1 << (k - x)) != 0 {
                             rm.cells[k] = marks[k - x];
                             let i = (k - x) * 4;
-                            if let Some(c) = changed.as_deref_mut()
-                                && before[i..i + 4] != span[i..i + 4]
-                            {
-                                c.push(k as u32);
+                            if let Some(n) = notes.as_deref_mut() {
+                                let bytes = (&before[i..i + 4], &span[i..i + 4]);
+                                n.note(k, dirty[k], bytes, colors[k - x]);
                             }
                         }
                     }
@@ -219,11 +244,11 @@ impl Frame<'_> {
                     _ if dirty[k] => {
                         let px = &mut row[k * 4..k * 4 + 4];
                         let before: [u8; 4] = (&*px).try_into().expect("4 bytes");
-                        rm.cells[k] = self.put_with((k as u32, y), px, offsets, &mut rm.segs);
-                        if let Some(c) = changed.as_deref_mut()
-                            && before != *px
-                        {
-                            c.push(k as u32);
+                        let at = (k as u32, y);
+                        let (cells, c) = self.put(at, px, (None, offsets), &mut rm.segs);
+                        rm.cells[k] = cells;
+                        if let Some(n) = notes.as_deref_mut() {
+                            n.note(k, true, (&before, px), c);
                         }
                         traced += 1;
                     }
