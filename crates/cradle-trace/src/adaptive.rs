@@ -17,7 +17,7 @@
 use super::color::Image;
 use super::motion::{Cells, Seg};
 use super::render::{Frame, for_rows};
-use super::retrace::{BLOCK, Moved, Notes, RowMotion};
+use super::retrace::{Moved, Notes, RowMotion};
 use glam::Vec3;
 use rayon::prelude::*;
 
@@ -240,33 +240,20 @@ impl Frame<'_> {
         if same && !redo.contains(&true) {
             return 0;
         }
-        // The new record reuses the old one's cells: kept where the pixel stays
-        // an edge and is not traced again, cleared where it is no edge. Blocks
-        // with nothing to change keep their segments in one copy.
-        let mut old = std::mem::replace(rm, RowMotion::new(0, true));
-        rm.cells = std::mem::take(&mut old.cells);
-        rm.start.reserve(w + 1);
+        // The record changes where a pixel is traced again or stops being an
+        // edge; the others keep theirs.
         let mut traced = 0;
-        for x0 in (0..w).step_by(BLOCK) {
-            let end = (x0 + BLOCK).min(w);
-            if !redo[x0..end].contains(&true) && was[x0..end] == is[x0..end] {
-                rm.keep(&old, x0..end);
-                continue;
-            }
-            for x in x0..end {
-                rm.begin(true);
-                if redo[x] {
-                    let px = &mut row[x * 4..x * 4 + 4];
-                    rm.cells[x] = self.supersample((x as u32, y), px, lin[x], &mut rm.segs);
-                    traced += 1;
-                } else if is[x] {
-                    rm.segs.extend_from_slice(old.of(x));
-                } else {
-                    rm.cells[x] = 0;
-                }
+        for x in 0..w {
+            if redo[x] {
+                let px = &mut row[x * 4..x * 4 + 4];
+                let at = (x as u32, y);
+                rm.retrace(x, |segs| (self.supersample(at, px, lin[x], segs), ()));
+                traced += 1;
+            } else if was[x] && !is[x] {
+                rm.clear(x);
             }
         }
-        rm.begin(true);
+        rm.compact();
         rm.seal();
         traced
     }

@@ -287,8 +287,7 @@ impl<'a> Frame<'a> {
         });
         for (m, e) in rows.iter_mut().zip(edges) {
             m.cells.iter_mut().zip(e).for_each(|(a, b)| *a |= b);
-            m.start.clear();
-            m.segs.clear();
+            m.untrack();
             m.seal();
         }
         (img, rows)

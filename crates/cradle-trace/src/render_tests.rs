@@ -89,18 +89,15 @@ fn packets_note_the_same_motion_cells_as_the_scalar_path() {
     let key = |s: &Seg| [s.a.x, s.a.y, s.a.z, s.b.x, s.b.y, s.b.z].map(f32::to_bits);
     let mut segments = 0;
     for (a, b) in fast_rows.iter().zip(&full_rows) {
-        assert_eq!(a.start.len(), a.cells.len() + 1);
+        assert!(a.tracked() && b.tracked());
         for k in 0..a.cells.len() {
             let sorted = |r: &RowMotion| {
-                let mut v: Vec<_> = r.segs[r.start[k] as usize..r.start[k + 1] as usize]
-                    .iter()
-                    .map(key)
-                    .collect();
+                let mut v: Vec<_> = r.of(k).iter().map(key).collect();
                 v.sort_unstable();
                 v
             };
             assert_eq!(sorted(a), sorted(b), "pixel {k}: segments differ");
-            segments += b.start[k + 1] - b.start[k];
+            segments += b.of(k).len();
         }
     }
     assert!(segments > 2000, "{segments} segments");

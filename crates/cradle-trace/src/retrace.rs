@@ -9,16 +9,21 @@ use super::render::Frame;
 use glam::Vec3;
 
 /// What a row's rays passed: per pixel its motion cells, and its segments in the
-/// motion box, `segs[start[k]..start[k + 1]]` for pixel `k`. Without `start`
-/// (untracked frames, adaptive frames) only the cells count. `blocks` holds the
-/// union of the cells of each [`BLOCK`] pixels and `any` of them all, so that a
-/// frame skips the rows and blocks no moved cell reaches without reading every
-/// pixel's; [`RowMotion::seal`] sets them once the cells are written.
+/// motion box, `segs[span[k][0]..span[k][1]]` for pixel `k`. Without spans
+/// (untracked frames, full adaptive frames) only the cells count. A pixel traced
+/// again appends its new segments and leaves its old ones as garbage, which
+/// [`RowMotion::compact`] drops once it is half the row's, so a frame's work is in
+/// the pixels it traces, not in copying the others'. `blocks` holds the union of
+/// the cells of each [`BLOCK`] pixels and `any` of them all, so that a frame skips
+/// the rows and blocks no moved cell reaches without reading every pixel's;
+/// [`RowMotion::seal`] sets them once the cells are written.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct RowMotion {
     pub(crate) cells: Vec<Cells>,
-    pub(crate) start: Vec<u32>,
+    span: Vec<[u32; 2]>,
     pub(crate) segs: Vec<Seg>,
+    /// Segments in `segs` no pixel refers to.
+    garbage: usize,
     blocks: Vec<Cells>,
     any: Cells,
 }
@@ -31,15 +36,25 @@ impl RowMotion {
     pub(crate) fn new(width: usize, track: bool) -> Self {
         Self {
             cells: vec![0; width],
-            start: if track {
-                Vec::with_capacity(width + 1)
+            span: if track {
+                Vec::with_capacity(width)
             } else {
                 Vec::new()
             },
-            segs: Vec::new(),
-            blocks: Vec::new(),
-            any: 0,
+            ..Self::default()
         }
+    }
+
+    /// Whether the record holds segments.
+    pub(crate) fn tracked(&self) -> bool {
+        !self.span.is_empty()
+    }
+
+    /// Drops the segments, keeping the cells.
+    pub(crate) fn untrack(&mut self) {
+        self.span = Vec::new();
+        self.segs = Vec::new();
+        self.garbage = 0;
     }
 
     /// Notes the union of the cells of each block and of the row: call it once
@@ -59,28 +74,66 @@ impl RowMotion {
         self.any & cells != 0
     }
 
-    /// Marks where the next pixel's segments begin (and, after the last, where
-    /// they end).
+    /// While a fresh record is filled pixel by pixel: ends the last pixel's
+    /// segments and begins the next one's (after the last pixel: ends it).
     pub(crate) fn begin(&mut self, track: bool) {
         if track {
-            self.start.push(self.segs.len() as u32);
+            let n = self.segs.len() as u32;
+            if let Some(last) = self.span.last_mut() {
+                last[1] = n;
+            }
+            if self.span.len() < self.cells.len() {
+                self.span.push([n, n]);
+            }
         }
     }
 
     /// Pixel `k`'s segments.
     pub(crate) fn of(&self, k: usize) -> &[Seg] {
-        &self.segs[self.start[k] as usize..self.start[k + 1] as usize]
+        let [a, b] = self.span[k];
+        &self.segs[a as usize..b as usize]
     }
 
-    /// Appends the segments of `old`'s pixels `range` (the next ones of this
-    /// record, with segments) in one copy.
-    pub(crate) fn keep(&mut self, old: &Self, range: std::ops::Range<usize>) {
-        let (a, b) = (old.start[range.start], old.start[range.end]);
-        let shift = self.segs.len() as u32;
-        self.start
-            .extend(old.start[range].iter().map(|&k| k - a + shift));
-        self.segs
-            .extend_from_slice(&old.segs[a as usize..b as usize]);
+    /// Traces pixel `k` again: `trace` appends its segments and returns its cells
+    /// (and what the caller wants back); they replace the old ones.
+    pub(crate) fn retrace<R>(
+        &mut self,
+        k: usize,
+        trace: impl FnOnce(&mut Vec<Seg>) -> (Cells, R),
+    ) -> R {
+        let start = self.segs.len() as u32;
+        let (cells, out) = trace(&mut self.segs);
+        self.cells[k] = cells;
+        if let Some(span) = self.span.get_mut(k) {
+            self.garbage += (span[1] - span[0]) as usize;
+            *span = [start, self.segs.len() as u32];
+        }
+        out
+    }
+
+    /// Clears pixel `k`: no cells, no segments.
+    pub(crate) fn clear(&mut self, k: usize) {
+        self.cells[k] = 0;
+        if let Some(span) = self.span.get_mut(k) {
+            self.garbage += (span[1] - span[0]) as usize;
+            *span = [0, 0];
+        }
+    }
+
+    /// Drops the garbage once it is half the segments: copies each pixel's
+    /// segments, in pixel order, into a fresh buffer.
+    pub(crate) fn compact(&mut self) {
+        if self.garbage * 2 <= self.segs.len() {
+            return;
+        }
+        let mut segs = Vec::with_capacity(self.segs.len() - self.garbage);
+        for span in &mut self.span {
+            let start = segs.len() as u32;
+            segs.extend_from_slice(&self.segs[span[0] as usize..span[1] as usize]);
+            *span = [start, segs.len() as u32];
+        }
+        self.segs = segs;
+        self.garbage = 0;
     }
 }
 
@@ -126,7 +179,7 @@ impl Moved {
         if cells == 0 {
             return false;
         }
-        if rm.start.is_empty() || self.coarse {
+        if !rm.tracked() || self.coarse {
             return true;
         }
         // A segment near the moved shapes' box, tested against the shapes in
@@ -189,23 +242,13 @@ impl Frame<'_> {
         let Some(dirty) = moved.dirty(rm) else {
             return 0;
         };
-        let track = !rm.start.is_empty();
-        let mut old = std::mem::replace(rm, RowMotion::new(0, track));
-        rm.cells = std::mem::take(&mut old.cells);
-        if track {
-            rm.start.reserve(width + 1);
-            rm.segs.reserve(old.segs.len() + old.segs.len() / 4);
-        }
+        let track = rm.tracked();
         let packets = self.packets(offsets);
         let mut traced = 0;
         let mut x = 0;
         while x < width {
             let end = (x + LANES).min(width);
             if !dirty[x..end].contains(&true) {
-                if track {
-                    // The clean pixels' segments, in one copy.
-                    rm.keep(&old, x..end);
-                }
                 x = end;
                 continue;
             }
@@ -218,50 +261,37 @@ impl Frame<'_> {
                     let before: [u8; 4 * LANES] = span.try_into().expect("a run of LANES");
                     let (done, marks) = pk.run(x as u32, y, span);
                     let colors = pk.colors.get();
-                    for k in x..end {
-                        if done & (1 << (k - x)) != 0 {
-                            rm.cells[k] = marks[k - x];
-                            let i = (k - x) * 4;
-                            if let Some(n) = notes.as_deref_mut() {
-                                let bytes = (&before[i..i + 4], &span[i..i + 4]);
-                                n.note(k, dirty[k], bytes, colors[k - x]);
+                    for k in (x..end).filter(|k| done & (1 << (k - x)) != 0) {
+                        rm.retrace(k, |segs| {
+                            if track {
+                                pk.lane_segs(k - x, segs);
                             }
-                        }
-                    }
-                    Some((pk, done))
-                }
-                _ => None,
-            };
-            for k in x..end {
-                rm.begin(track);
-                match done {
-                    Some((pk, d)) if d & (1 << (k - x)) != 0 => {
-                        if track {
-                            pk.lane_segs(k - x, &mut rm.segs);
-                        }
-                        traced += 1;
-                    }
-                    _ if dirty[k] => {
-                        let px = &mut row[k * 4..k * 4 + 4];
-                        let before: [u8; 4] = (&*px).try_into().expect("4 bytes");
-                        let at = (k as u32, y);
-                        let (cells, c) = self.put(at, px, (None, offsets), &mut rm.segs);
-                        rm.cells[k] = cells;
+                            (marks[k - x], ())
+                        });
                         if let Some(n) = notes.as_deref_mut() {
-                            n.note(k, true, (&before, px), c);
+                            let i = (k - x) * 4;
+                            let bytes = (&before[i..i + 4], &span[i..i + 4]);
+                            n.note(k, dirty[k], bytes, colors[k - x]);
                         }
                         traced += 1;
                     }
-                    _ => {
-                        if track {
-                            rm.segs.extend_from_slice(old.of(k));
-                        }
-                    }
+                    done
                 }
+                _ => 0,
+            };
+            for k in (x..end).filter(|&k| dirty[k] && done & (1 << (k - x)) == 0) {
+                let px = &mut row[k * 4..k * 4 + 4];
+                let before: [u8; 4] = (&*px).try_into().expect("4 bytes");
+                let at = (k as u32, y);
+                let c = rm.retrace(k, |segs| self.put(at, px, (None, offsets), segs));
+                if let Some(n) = notes.as_deref_mut() {
+                    n.note(k, true, (&before, px), c);
+                }
+                traced += 1;
             }
             x = end;
         }
-        rm.begin(track);
+        rm.compact();
         rm.seal();
         traced
     }
