@@ -223,36 +223,37 @@ impl Frame<'_> {
                 show_base(row, x as usize);
             }
         }
+        // Pixels that stop being edges show the base colour and drop their
+        // record; new edges are supersampled.
+        let mut redo: Vec<usize> = Vec::new();
         if !same {
-            for x in (0..w).filter(|&x| was[x] && !is[x]) {
-                show_base(row, x);
+            for x in 0..w {
+                if was[x] && !is[x] {
+                    show_base(row, x);
+                    rm.clear(x);
+                } else if is[x] && !was[x] {
+                    redo.push(x);
+                }
             }
         }
-        // Only edge pixels have cells in `rm`, so its blocks skip the others.
-        let touched = moved.dirty(rm);
-        let mut redo: Vec<bool> = (0..w)
-            .map(|x| is[x] && (!was[x] || touched.as_ref().is_some_and(|t| t[x])))
-            .collect();
-        // Sample 0 is the base pixel's: traced again there, so here too.
-        for &x in dirty {
-            redo[x as usize] |= is[x as usize];
+        // So are edges whose other samples' segments come near a moved object
+        // (only edge pixels have cells in `rm`, so its blocks skip the others),
+        // and those whose base pixel, sample 0, was traced again.
+        if let Some(touched) = moved.dirty(rm) {
+            redo.extend((0..w).filter(|&x| touched[x] && is[x]));
         }
-        if same && !redo.contains(&true) {
+        redo.extend(dirty.iter().map(|&x| x as usize).filter(|&x| is[x]));
+        if same && redo.is_empty() {
             return 0;
         }
-        // The record changes where a pixel is traced again or stops being an
-        // edge; the others keep theirs.
-        let mut traced = 0;
-        for x in 0..w {
-            if redo[x] {
-                let px = &mut row[x * 4..x * 4 + 4];
-                let at = (x as u32, y);
-                rm.retrace(x, |segs| (self.supersample(at, px, lin[x], segs), ()));
-                traced += 1;
-            } else if was[x] && !is[x] {
-                rm.clear(x);
-            }
+        redo.sort_unstable();
+        redo.dedup();
+        for &x in &redo {
+            let px = &mut row[x * 4..x * 4 + 4];
+            let at = (x as u32, y);
+            rm.retrace(x, |segs| (self.supersample(at, px, lin[x], segs), ()));
         }
+        let traced = redo.len();
         rm.compact();
         rm.seal();
         traced

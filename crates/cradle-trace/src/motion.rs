@@ -27,7 +27,8 @@ pub struct MotionGrid {
 }
 
 impl MotionGrid {
-    /// Cells along x, y and z (32 * 4 * 1 = 128, the bits of a mask).
+    /// Cells along x, y and z (32 * 4 * 1 = 128, the bits of a mask). `cells`
+    /// counts on rows of 32 x cells and one z layer.
     const N: [usize; 3] = [32, 4, 1];
 
     /// The grid over `bounds`.
@@ -55,17 +56,18 @@ impl MotionGrid {
         // no rounding instruction); NaN clamps to 0 either way.
         let c0 = ((lo - self.bounds.min) * self.inv_cell).clamp(Vec3::ZERO, n);
         let c1 = ((hi - self.bounds.min) * self.inv_cell).clamp(Vec3::ZERO, n);
-        // One run of x bits, repeated for each (y, z) row in range.
+        // One run of x bits, repeated in every row of 32 by a multiplication,
+        // then the rows y0..=y1 kept (one z layer: rows are y).
         let (x0, x1) = (c0.x as u32, c1.x as u32);
-        let run = ((1 << (x1 + 1)) - 1) & !((1 << x0) - 1);
-        let mut mask = 0;
-        for z in c0.z as usize..=c1.z as usize {
-            for y in c0.y as usize..=c1.y as usize {
-                mask |= run << ((z * ny + y) * nx);
-            }
-        }
-        mask
+        let run = ((1u64 << (x1 + 1)) - 1) & !((1u64 << x0) - 1);
+        let every_row = Cells::from(run) * Self::ROW_ONES;
+        let (y0, y1) = (c0.y as u32, c1.y as u32);
+        let rows = (Cells::MAX >> ((ny as u32 - 1 - (y1 - y0)) * nx as u32)) << (y0 * nx as u32);
+        every_row & rows
     }
+
+    /// Bit 0 of every row of x cells.
+    const ROW_ONES: Cells = 1 | 1 << 32 | 1 << 64 | 1 << 96;
 
     /// The cells the segment of `ray` from its start to `t_max` passes through
     /// (a superset: those of its part inside the box's bounding box).
@@ -93,6 +95,9 @@ impl MotionGrid {
         })
     }
 }
+
+// `cells` counts on rows of 32 x cells and one z layer.
+const _: () = assert!(MotionGrid::N[0] == 32 && MotionGrid::N[1] == 4 && MotionGrid::N[2] == 1);
 
 /// A piece of a ray inside the motion box, from `a` to `b`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -141,5 +146,45 @@ impl Motion {
             self.mask |= g.cells(s.a.min(s.b), s.a.max(s.b));
             self.segs.push(s);
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::MotionGrid;
+    use crate::geometry::Aabb;
+    use glam::Vec3;
+
+    #[test]
+    fn a_box_claims_the_cells_of_its_x_run_in_each_of_its_rows() {
+        let grid = MotionGrid::new(Aabb {
+            min: Vec3::new(-0.4, 0.0, -0.1),
+            max: Vec3::new(0.4, 0.4, 0.1),
+        });
+        // Cells are 0.025 wide (x) and 0.1 high (y); boxes well inside cells'
+        // interiors (centres on a 0.0125 / 0.05 offset) so padding never
+        // reaches a neighbour.
+        for (x0, x1, y0, y1) in [
+            (0, 0, 0, 0),
+            (3, 9, 1, 2),
+            (0, 31, 0, 3),
+            (31, 31, 3, 3),
+            (5, 6, 2, 3),
+        ] {
+            let at = |x: usize, y: usize| {
+                Vec3::new(-0.4 + 0.025 * x as f32 + 0.0125, 0.1 * y as f32 + 0.05, 0.0)
+            };
+            let got = grid.cells(at(x0, y0), at(x1, y1));
+            let mut want = 0u128;
+            for y in y0..=y1 {
+                for x in x0..=x1 {
+                    want |= 1 << (y * 32 + x);
+                }
+            }
+            assert_eq!(got, want, "x {x0}..={x1}, y {y0}..={y1}");
+        }
+        // Outside the box: no cells; larger than the box: all of them.
+        assert_eq!(grid.cells(Vec3::splat(2.0), Vec3::splat(3.0)), 0);
+        assert_eq!(grid.cells(Vec3::splat(-5.0), Vec3::splat(5.0)), u128::MAX);
     }
 }
