@@ -159,6 +159,30 @@ impl Moved {
         if !rm.meets(self.cells) {
             return None;
         }
+        #[cfg(target_arch = "x86_64")]
+        if crate::simd::avx2() {
+            // SAFETY: the CPU has AVX2, checked just above.
+            #[expect(unsafe_code, reason = "the run-time dispatch to the AVX2 build")]
+            return unsafe { self.dirty_avx2(rm) };
+        }
+        self.dirty_with::<false>(rm)
+    }
+
+    /// [`Self::dirty`] compiled for AVX2, the segment tests inlined.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn dirty_avx2(&self, rm: &RowMotion) -> Option<Vec<bool>> {
+        self.dirty_with::<true>(rm)
+    }
+
+    /// [`Self::dirty`] after its row test; `AVX2` (set only where the CPU has
+    /// it): the AVX2 build.
+    #[expect(
+        clippy::inline_always,
+        reason = "inlined into each build, so the AVX2 one compiles it for AVX2"
+    )]
+    #[inline(always)]
+    fn dirty_with<const AVX2: bool>(&self, rm: &RowMotion) -> Option<Vec<bool>> {
         let mut out = vec![false; rm.cells.len()];
         let mut any = false;
         for ((b, &c), block) in rm.blocks.iter().enumerate().zip(out.chunks_mut(BLOCK)) {
@@ -166,7 +190,7 @@ impl Moved {
                 continue;
             }
             for (i, dirty) in block.iter_mut().enumerate() {
-                *dirty = self.touches(rm, b * BLOCK + i);
+                *dirty = self.touches::<AVX2>(rm, b * BLOCK + i);
                 any |= *dirty;
             }
         }
@@ -174,7 +198,13 @@ impl Moved {
     }
 
     /// Whether pixel `k` of `rm` may have changed.
-    fn touches(&self, rm: &RowMotion, k: usize) -> bool {
+    /// `AVX2`: as in [`Self::dirty_with`].
+    #[expect(
+        clippy::inline_always,
+        reason = "inlined into each build, so the AVX2 one compiles it for AVX2"
+    )]
+    #[inline(always)]
+    fn touches<const AVX2: bool>(&self, rm: &RowMotion, k: usize) -> bool {
         let cells = rm.cells[k] & self.cells;
         if cells == 0 {
             return false;
@@ -187,7 +217,7 @@ impl Moved {
         rm.of(k).iter().any(|s| {
             s.a.max(s.b).cmpge(self.lo).all()
                 && s.a.min(s.b).cmple(self.hi).all()
-                && self.near.meets(s, cells)
+                && self.near.meets_with::<AVX2>(s, cells)
         })
     }
 }

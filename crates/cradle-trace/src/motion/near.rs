@@ -212,18 +212,38 @@ impl NearSet {
     pub fn meets(&self, s: &Seg, cells: Cells) -> bool {
         #[cfg(target_arch = "x86_64")]
         if crate::simd::avx2() {
+            return self.meets_with::<true>(s, cells);
+        }
+        self.meets_with::<false>(s, cells)
+    }
+
+    /// [`Self::meets`], with `AVX2` the AVX2 build: inlined into callers
+    /// compiled for AVX2 (such as the row filter, `Moved::dirty`), so that the
+    /// lanes' test does not stay a call. `AVX2` is set only where the CPU has
+    /// AVX2.
+    #[expect(
+        clippy::inline_always,
+        reason = "inlined into the AVX2 build of its caller"
+    )]
+    #[inline(always)]
+    pub(crate) fn meets_with<const AVX2: bool>(&self, s: &Seg, cells: Cells) -> bool {
+        #[cfg(target_arch = "x86_64")]
+        if AVX2 {
             let (p, q) = (s.a, s.b);
             let seg = [p, q - p, p.min(q), p.max(q)];
             return self.chunks.iter().enumerate().any(|(ci, k)| {
-                // SAFETY: the CPU has AVX2, checked just above.
-                #[expect(unsafe_code, reason = "the run-time dispatch to the AVX2 build")]
-                let maybe = unsafe { k.maybe_avx2(&seg) };
-                (0..CHUNK).any(|i| {
-                    maybe & (1 << i) != 0 && {
-                        let (c, n) = &self.nears[ci * CHUNK + i];
-                        c & cells != 0 && n.meets(s)
+                // SAFETY: `AVX2` is set only where the CPU has AVX2.
+                #[expect(unsafe_code, reason = "the AVX2 build's lane test")]
+                let mut maybe = unsafe { k.maybe_avx2(&seg) };
+                while maybe != 0 {
+                    let i = maybe.trailing_zeros() as usize;
+                    maybe &= maybe - 1;
+                    let (c, n) = &self.nears[ci * CHUNK + i];
+                    if c & cells != 0 && n.meets(s) {
+                        return true;
                     }
-                })
+                }
+                false
             });
         }
         self.nears.iter().any(|(c, n)| c & cells != 0 && n.meets(s))
@@ -235,6 +255,7 @@ impl Chunk {
     /// A bit per lane whose shape the segment `[p, d, smin, smax]` (from `p`
     /// along `d`, within the box `smin..smax`) may come within.
     #[target_feature(enable = "avx2")]
+    #[inline]
     fn maybe_avx2(&self, &[p, d, smin, smax]: &[Vec3; 4]) -> u32 {
         use crate::simd::load8;
         use std::arch::x86_64::{
