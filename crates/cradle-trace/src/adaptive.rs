@@ -240,7 +240,7 @@ impl Frame<'_> {
         // (only edge pixels have cells in `rm`, so its blocks skip the others),
         // and those whose base pixel, sample 0, was traced again.
         if let Some(touched) = moved.dirty(rm) {
-            redo.extend((0..w).filter(|&x| touched[x] && is[x]));
+            redo.extend(touched.iter().map(|&x| x as usize).filter(|&x| is[x]));
         }
         redo.extend(dirty.iter().map(|&x| x as usize).filter(|&x| is[x]));
         if same && redo.is_empty() {
@@ -255,7 +255,11 @@ impl Frame<'_> {
         }
         let traced = redo.len();
         rm.compact();
-        rm.seal();
+        if same {
+            rm.reseal(redo);
+        } else {
+            rm.seal();
+        }
         traced
     }
 }

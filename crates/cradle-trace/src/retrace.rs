@@ -30,6 +30,9 @@ pub(crate) struct RowMotion {
 
 /// Pixels per block of [`RowMotion::blocks`].
 pub(crate) const BLOCK: usize = 8;
+// A packet's run of pixels is one block, so resealing the blocks of a row's
+// dirty pixels covers the clean lanes a packet traced beside them.
+const _: () = assert!(BLOCK == LANES);
 
 impl RowMotion {
     /// A record of `width` pixels to fill; `track`: with segments.
@@ -66,6 +69,20 @@ impl RowMotion {
                 .chunks(BLOCK)
                 .map(|b| b.iter().fold(0, |a, c| a | c)),
         );
+        self.any = self.blocks.iter().fold(0, |a, c| a | c);
+    }
+
+    /// [`Self::seal`] after the cells of pixels `xs` (in order) changed, and
+    /// only theirs.
+    pub(crate) fn reseal(&mut self, xs: impl IntoIterator<Item = usize>) {
+        let mut last = usize::MAX;
+        for b in xs.into_iter().map(|x| x / BLOCK) {
+            if b != last {
+                let end = ((b + 1) * BLOCK).min(self.cells.len());
+                self.blocks[b] = self.cells[b * BLOCK..end].iter().fold(0, |a, c| a | c);
+                last = b;
+            }
+        }
         self.any = self.blocks.iter().fold(0, |a, c| a | c);
     }
 
@@ -153,9 +170,10 @@ pub(crate) struct Moved {
 }
 
 impl Moved {
-    /// Per pixel of `rm` (sealed), whether it may have changed ([`Self::touches`]);
-    /// `None` when no pixel may. Blocks no moved cell reaches are skipped whole.
-    pub(crate) fn dirty(&self, rm: &RowMotion) -> Option<Vec<bool>> {
+    /// The pixels of `rm` (sealed) that may have changed ([`Self::touches`]), in
+    /// order; `None` when no pixel may. Blocks no moved cell reaches are skipped
+    /// whole.
+    pub(crate) fn dirty(&self, rm: &RowMotion) -> Option<Vec<u32>> {
         if !rm.meets(self.cells) {
             return None;
         }
@@ -171,7 +189,7 @@ impl Moved {
     /// [`Self::dirty`] compiled for AVX2, the segment tests inlined.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
-    fn dirty_avx2(&self, rm: &RowMotion) -> Option<Vec<bool>> {
+    fn dirty_avx2(&self, rm: &RowMotion) -> Option<Vec<u32>> {
         self.dirty_with::<true>(rm)
     }
 
@@ -182,19 +200,21 @@ impl Moved {
         reason = "inlined into each build, so the AVX2 one compiles it for AVX2"
     )]
     #[inline(always)]
-    fn dirty_with<const AVX2: bool>(&self, rm: &RowMotion) -> Option<Vec<bool>> {
-        let mut out = vec![false; rm.cells.len()];
-        let mut any = false;
-        for ((b, &c), block) in rm.blocks.iter().enumerate().zip(out.chunks_mut(BLOCK)) {
+    fn dirty_with<const AVX2: bool>(&self, rm: &RowMotion) -> Option<Vec<u32>> {
+        let mut out = Vec::new();
+        let n = rm.cells.len();
+        for (b, &c) in rm.blocks.iter().enumerate() {
             if c & self.cells == 0 {
                 continue;
             }
-            for (i, dirty) in block.iter_mut().enumerate() {
-                *dirty = self.touches::<AVX2>(rm, b * BLOCK + i);
-                any |= *dirty;
-            }
+            let pixels = b * BLOCK..((b + 1) * BLOCK).min(n);
+            out.extend(
+                pixels
+                    .filter(|&k| self.touches::<AVX2>(rm, k))
+                    .map(|k| k as u32),
+            );
         }
-        any.then_some(out)
+        (!out.is_empty()).then_some(out)
     }
 
     /// Whether pixel `k` of `rm` may have changed.
@@ -275,18 +295,19 @@ impl Frame<'_> {
         let track = rm.tracked();
         let packets = self.packets(offsets);
         let mut traced = 0;
-        let mut x = 0;
-        while x < width {
+        // Run by run of LANES pixels holding a dirty one: `mask` a bit per
+        // dirty pixel of the run.
+        let mut rest = &dirty[..];
+        while let Some(&first) = rest.first() {
+            let x = first as usize / LANES * LANES;
             let end = (x + LANES).min(width);
-            if !dirty[x..end].contains(&true) {
-                x = end;
-                continue;
-            }
+            let count = rest.iter().take_while(|&&k| (k as usize) < end).count();
+            let mask = rest[..count]
+                .iter()
+                .fold(0u8, |m, &k| m | 1 << (k as usize - x));
+            rest = &rest[count..];
             let done = match &packets {
-                Some(pk)
-                    if end - x == LANES
-                        && dirty[x..end].iter().filter(|&&d| d).count() >= PACKET_AT_LEAST =>
-                {
+                Some(pk) if end - x == LANES && count >= PACKET_AT_LEAST => {
                     let span = &mut row[x * 4..end * 4];
                     let before: [u8; 4 * LANES] = span.try_into().expect("a run of LANES");
                     let (done, marks) = pk.run(x as u32, y, span);
@@ -301,7 +322,7 @@ impl Frame<'_> {
                         if let Some(n) = notes.as_deref_mut() {
                             let i = (k - x) * 4;
                             let bytes = (&before[i..i + 4], &span[i..i + 4]);
-                            n.note(k, dirty[k], bytes, colors[k - x]);
+                            n.note(k, mask & (1 << (k - x)) != 0, bytes, colors[k - x]);
                         }
                         traced += 1;
                     }
@@ -309,7 +330,7 @@ impl Frame<'_> {
                 }
                 _ => 0,
             };
-            for k in (x..end).filter(|&k| dirty[k] && done & (1 << (k - x)) == 0) {
+            for k in (x..end).filter(|&k| (mask & !done) & (1 << (k - x)) != 0) {
                 let px = &mut row[k * 4..k * 4 + 4];
                 let before: [u8; 4] = (&*px).try_into().expect("4 bytes");
                 let at = (k as u32, y);
@@ -319,10 +340,10 @@ impl Frame<'_> {
                 }
                 traced += 1;
             }
-            x = end;
         }
         rm.compact();
-        rm.seal();
+        // Only pixels of dirty runs changed their cells.
+        rm.reseal(dirty.iter().map(|&k| k as usize));
         traced
     }
 }
