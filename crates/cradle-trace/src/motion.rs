@@ -24,6 +24,8 @@ pub struct MotionGrid {
     /// Boxes are widened by this before finding their cells, so that rounding in
     /// a segment's end points never drops a cell it passes through.
     pad: Vec3,
+    /// The box widened by `pad`, where segments are clipped.
+    outer: Aabb,
 }
 
 impl MotionGrid {
@@ -35,10 +37,15 @@ impl MotionGrid {
     #[must_use]
     pub fn new(bounds: Aabb) -> Self {
         let size = (bounds.max - bounds.min).max(Vec3::splat(1e-9));
+        let pad = size * 1e-4 + Vec3::splat(1e-6);
         Self {
             bounds,
             inv_cell: Vec3::new(Self::N[0] as f32, Self::N[1] as f32, Self::N[2] as f32) / size,
-            pad: size * 1e-4 + Vec3::splat(1e-6),
+            pad,
+            outer: Aabb {
+                min: bounds.min - pad,
+                max: bounds.max + pad,
+            },
         }
     }
 
@@ -82,8 +89,8 @@ impl MotionGrid {
     #[must_use]
     pub fn clip(&self, ray: &Ray, t_max: f32) -> Option<Seg> {
         let inv = ray.dir.recip();
-        let t1 = (self.bounds.min - self.pad - ray.origin) * inv;
-        let t2 = (self.bounds.max + self.pad - ray.origin) * inv;
+        let t1 = (self.outer.min - ray.origin) * inv;
+        let t2 = (self.outer.max - ray.origin) * inv;
         let near = t1.min(t2).max_element().max(0.0);
         let far = t1.max(t2).min_element().min(t_max);
         if near > far || far.is_nan() {

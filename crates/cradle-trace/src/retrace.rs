@@ -207,12 +207,12 @@ impl Moved {
             if c & self.cells == 0 {
                 continue;
             }
-            let pixels = b * BLOCK..((b + 1) * BLOCK).min(n);
-            out.extend(
-                pixels
-                    .filter(|&k| self.touches::<AVX2>(rm, k))
-                    .map(|k| k as u32),
-            );
+            // A plain loop: a closure would stay a call, outside the AVX2 build.
+            for k in b * BLOCK..((b + 1) * BLOCK).min(n) {
+                if self.touches::<AVX2>(rm, k) {
+                    out.push(k as u32);
+                }
+            }
         }
         (!out.is_empty()).then_some(out)
     }
