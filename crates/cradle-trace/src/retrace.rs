@@ -143,7 +143,9 @@ impl RowMotion {
         if self.garbage * 2 <= self.segs.len() {
             return;
         }
-        let mut segs = Vec::with_capacity(self.segs.len() - self.garbage);
+        // As much room as before: the next frames' segments append without
+        // growing it again.
+        let mut segs = Vec::with_capacity(self.segs.capacity());
         for span in &mut self.span {
             let start = segs.len() as u32;
             segs.extend_from_slice(&self.segs[span[0] as usize..span[1] as usize]);
