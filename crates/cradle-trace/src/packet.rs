@@ -125,8 +125,9 @@ pub(crate) struct Packet<'a, 'p> {
     pub(crate) segs: RefCell<Vec<(u8, Seg)>>,
     /// A buffer lent to the scalar path's `Motion` for a lane.
     pub(crate) scratch: Cell<Vec<Seg>>,
-    /// Each lane's linear colour in the last packet (lanes it wrote).
-    pub(crate) colors: Cell<[Vec3; LANES]>,
+    /// The linear colours of the last packet's lanes (those it wrote), as
+    /// red, green and blue lanes: see [`Self::color`].
+    pub(crate) colors: Cell<[F8; 3]>,
 }
 
 impl Packet<'_, '_> {
@@ -155,6 +156,12 @@ impl Packet<'_, '_> {
             self.marks.set(m);
             self.segs.borrow_mut().push((i as u8, s));
         }
+    }
+
+    /// Lane `i`'s linear colour in the last packet.
+    pub(crate) fn color(&self, i: usize) -> Vec3 {
+        let [r, g, b] = self.colors.get();
+        Vec3::new(r[i], g[i], b[i])
     }
 
     /// Appends the segments lane `i` noted in the last packet to `out`.
@@ -306,8 +313,7 @@ impl Packet<'_, '_> {
             }
             srgb8_lanes(c)
         };
-        self.colors
-            .set(lanes(|i| Vec3::new(color.x[i], color.y[i], color.z[i])));
+        self.colors.set([color.x, color.y, color.z]);
         let (r, g, b) = (srgb(color.x), srgb(color.y), srgb(color.z));
         let mut done = 0u8;
         for (i, px) in out.chunks_exact_mut(4).enumerate() {

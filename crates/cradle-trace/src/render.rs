@@ -166,7 +166,7 @@ impl<'a> Frame<'a> {
             marks: std::cell::Cell::new([0; LANES]),
             segs: std::cell::RefCell::new(Vec::new()),
             scratch: std::cell::Cell::new(Vec::new()),
-            colors: std::cell::Cell::new([Vec3::ZERO; LANES]),
+            colors: std::cell::Cell::new([[0.0; LANES]; 3]),
         })
     }
 
@@ -191,14 +191,15 @@ impl<'a> Frame<'a> {
             {
                 let span = &mut out[x as usize * 4..(x + lanes) as usize * 4];
                 let (done, marks) = pk.run(x, y, span);
-                let colors = pk.colors.get();
+                if let Some(l) = lin.as_deref_mut() {
+                    for i in (0..LANES).filter(|i| done & (1 << i) != 0) {
+                        l[x as usize + i] = pk.color(i);
+                    }
+                }
                 for i in x..x + lanes {
                     rm.begin(track);
                     if done & (1 << (i - x)) != 0 {
                         rm.cells[i as usize] = marks[(i - x) as usize];
-                        if let Some(l) = lin.as_deref_mut() {
-                            l[i as usize] = colors[(i - x) as usize];
-                        }
                         if track {
                             pk.lane_segs((i - x) as usize, &mut rm.segs);
                         }

@@ -313,7 +313,6 @@ impl Frame<'_> {
                     let span = &mut row[x * 4..end * 4];
                     let before: [u8; 4 * LANES] = span.try_into().expect("a run of LANES");
                     let (done, marks) = pk.run(x as u32, y, span);
-                    let colors = pk.colors.get();
                     for k in (x..end).filter(|k| done & (1 << (k - x)) != 0) {
                         rm.retrace(k, |segs| {
                             if track {
@@ -324,7 +323,7 @@ impl Frame<'_> {
                         if let Some(n) = notes.as_deref_mut() {
                             let i = (k - x) * 4;
                             let bytes = (&before[i..i + 4], &span[i..i + 4]);
-                            n.note(k, mask & (1 << (k - x)) != 0, bytes, colors[k - x]);
+                            n.note(k, mask & (1 << (k - x)) != 0, bytes, pk.color(k - x));
                         }
                         traced += 1;
                     }
