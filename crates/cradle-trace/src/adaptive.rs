@@ -212,7 +212,7 @@ impl Frame<'_> {
             dirty,
             changed,
         } = *base;
-        if same && dirty.is_empty() && !rm.meets(moved.cells) {
+        if same && dirty.is_empty() && changed.is_empty() && !rm.meets(moved.cells) {
             return 0;
         }
         let show_base = |row: &mut [u8], x: usize| {
