@@ -29,7 +29,7 @@ pub(crate) struct RowMotion {
 }
 
 /// Pixels per block of [`RowMotion::blocks`].
-pub(crate) const BLOCK: usize = 8;
+const BLOCK: usize = 8;
 // A packet's run of pixels is one block, so resealing the blocks of a row's
 // dirty pixels covers the clean lanes a packet traced beside them.
 const _: () = assert!(BLOCK == LANES);
