@@ -10,9 +10,11 @@
 //! Work that is not coherent (a shadow ray that may be blocked, a mirror ray with
 //! objects to meet) goes lane by lane through the scalar queries themselves.
 //!
-//! The arithmetic is written over `[f32; 8]` arrays, which the compiler turns
-//! into SIMD: SSE2 in the portable build, and AVX2 where the CPU has it, chosen at
-//! run time (`floor_packet`). The shading of the lanes is in `lanes`.
+//! The floor's kernel (rays, hits, lights, checker, mirror rays) is written once
+//! over a lane build `S: Simd` (`crate::simd`): one AVX instruction per operation
+//! where the CPU has AVX2 (chosen at run time, in `Packet::floor`), plain loops
+//! over arrays elsewhere. The tests of objects met on the way (`occlusion`, `avx`)
+//! work on lane arrays. The shading of the lanes is in `lanes`.
 
 #![expect(
     clippy::inline_always,
@@ -26,6 +28,9 @@ use super::motion::{Cells, MotionGrid, Seg};
 use super::prepared::Prepared;
 use super::scene::{Material, Shape};
 use super::shade::SURFACE_OFFSET;
+#[cfg(target_arch = "x86_64")]
+use super::simd::Avx2;
+use super::simd::{Portable, Simd};
 use super::tiles::Tiles;
 use glam::Vec3;
 use std::cell::{Cell, RefCell};
@@ -39,6 +44,9 @@ mod avx;
 mod lane_tests;
 mod lanes;
 mod occlusion;
+mod vec;
+
+use vec::{L3, Surface, load3, splat3, store3};
 
 pub use super::simd::force_portable;
 
@@ -70,15 +78,15 @@ fn lanes<T: Copy + Default>(mut f: impl FnMut(usize) -> T) -> [T; LANES] {
 }
 
 impl V8 {
+    const ZERO: V8 = V8 {
+        x: [0.0; LANES],
+        y: [0.0; LANES],
+        z: [0.0; LANES],
+    };
+
     #[inline(always)]
     fn lane(&self, i: usize) -> Vec3 {
         Vec3::new(self.x[i], self.y[i], self.z[i])
-    }
-
-    /// `a.dot(b)`: `(a.x * b.x) + (a.y * b.y) + (a.z * b.z)`.
-    #[inline(always)]
-    fn dot(&self, b: Vec3) -> F8 {
-        f8(|i| (self.x[i] * b.x) + (self.y[i] * b.y) + (self.z[i] * b.z))
     }
 }
 
@@ -192,136 +200,135 @@ impl Packet<'_, '_> {
             self.segs.borrow_mut().clear();
         }
         #[cfg(target_arch = "x86_64")]
-        if super::simd::avx2() {
-            // SAFETY: the CPU has AVX2, checked just above.
+        if let Some(s) = Avx2::detect() {
+            // SAFETY: the token proves the CPU has AVX2.
             #[expect(unsafe_code, reason = "the one run-time dispatch to the AVX2 build")]
-            return unsafe { self.floor_avx2(floor, others, x0, y, out) };
+            return unsafe { self.floor_avx2(s, floor, others, (x0, y), out) };
         }
-        self.floor_lanes::<false>(floor, others, x0, y, out)
+        let (done, color) = self.floor_lanes(Portable, floor, others, x0, y);
+        if done != 0 {
+            let srgb = |c: &F8| srgb8_lanes(*c);
+            write(out, done, [srgb(&color.x), srgb(&color.y), srgb(&color.z)]);
+        }
+        done
     }
 
-    /// [`Self::floor_lanes`] compiled for AVX2 (8 lanes in one register); no FMA,
-    /// which AVX2 does not imply.
+    /// [`Self::floor_lanes`] compiled for AVX2 (8 lanes in one register), with
+    /// the sRGB bytes by AVX2's gathers; no FMA, which AVX2 does not imply.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
     fn floor_avx2(
         &self,
+        s: Avx2,
         floor: &Floor<'_>,
         others: &[usize],
-        x0: u32,
-        y: u32,
+        (x0, y): (u32, u32),
         out: &mut [u8],
     ) -> u8 {
-        self.floor_lanes::<true>(floor, others, x0, y, out)
+        let (done, color) = self.floor_lanes(s, floor, others, x0, y);
+        if done != 0 {
+            let srgb = |c: &F8| super::color::srgb8_avx2(*c);
+            write(out, done, [srgb(&color.x), srgb(&color.y), srgb(&color.z)]);
+        }
+        done
     }
 
-    /// The packet's lanes; `AVX2`: compiled into the AVX2 build, which may use
-    /// its instructions directly (the sRGB gathers).
+    /// The packet's lanes in lane build `S`: the lanes written (a bit each) and
+    /// their linear colours, also kept in `colors`.
     #[inline(always)]
-    fn floor_lanes<const AVX2: bool>(
+    fn floor_lanes<S: Simd>(
         &self,
+        s: S,
         floor: &Floor<'_>,
         others: &[usize],
         x0: u32,
         y: u32,
-        out: &mut [u8],
-    ) -> u8 {
+    ) -> (u8, V8) {
         let c = self.cam;
+        let k = |v: f32| s.splat(v);
         // CameraRays::ray(x + 0.5, y + 0.5).
-        let sx = f8(|i| 2.0 * ((x0 + i as u32) as f32 + 0.5) / c.width - 1.0);
+        let xs = s.load(&f8(|i| (x0 + i as u32) as f32));
+        let sx = k(2.0) * (xs + k(0.5)) / k(c.width) - k(1.0);
         let sy = 1.0 - 2.0 * (y as f32 + 0.5) / c.height;
         // (forward + right * sx + up * sy).normalize()
-        let v = V8 {
-            x: f8(|i| (c.forward.x + c.right.x * sx[i]) + c.up.x * sy),
-            y: f8(|i| (c.forward.y + c.right.y * sx[i]) + c.up.y * sy),
-            z: f8(|i| (c.forward.z + c.right.z * sx[i]) + c.up.z * sy),
+        let v = L3 {
+            x: (k(c.forward.x) + k(c.right.x) * sx) + k(c.up.x * sy),
+            y: (k(c.forward.y) + k(c.right.y) * sx) + k(c.up.y * sy),
+            z: (k(c.forward.z) + k(c.right.z) * sx) + k(c.up.z * sy),
         };
-        let inv = f8(|i| 1.0 / ((v.x[i] * v.x[i]) + (v.y[i] * v.y[i]) + (v.z[i] * v.z[i])).sqrt());
-        let d = V8 {
-            x: f8(|i| v.x[i] * inv[i]),
-            y: f8(|i| v.y[i] * inv[i]),
-            z: f8(|i| v.z[i] * inv[i]),
-        };
+        let inv = k(1.0) / S::sqrt(v.dot(&v));
+        let d = v.scale(inv);
         // hit_plane: denom = dir.dot(normal); |denom| < 1e-9 misses;
         // t = num / denom; t > T_MIN hits.
-        let denom = d.dot(floor.normal);
-        let t = f8(|i| floor.num / denom[i]);
+        let denom = d.dot(&splat3(s, floor.normal));
+        let t = k(floor.num) / denom;
         // A miss (or a hit at infinity, which the closest-hit query does not take)
         // in any lane: the scalar path traces them all.
-        let hits = |i: usize| denom[i].abs() >= 1e-9 && t[i] > T_MIN && t[i] < f32::INFINITY;
-        if !(0..LANES).all(hits) {
-            return 0;
+        let hits = S::le(k(1e-9), S::abs(denom)) & S::lt(k(T_MIN), t) & S::lt(t, k(f32::INFINITY));
+        if S::bits(hits) != 0xFF {
+            return (0, V8::ZERO);
         }
         // closest_among, after the plane: each other candidate through its box
         // with the plane's t as the limit. Lanes that meet one first are the
         // scalar path's.
-        let front = if others.is_empty() {
-            [false; LANES]
+        let (da, ta) = (store3::<S>(&d), S::store(t));
+        let on_floor = if others.is_empty() {
+            0xFF
         } else {
-            self.nearer_than(others, &d, &t)
+            !bits(&self.nearer_than(others, &da, &ta))
         };
-        if !front.contains(&false) {
-            return 0;
+        if on_floor == 0 {
+            return (0, V8::ZERO);
         }
-        let on_floor: [bool; LANES] = std::array::from_fn(|i| !front[i]);
         if self.motion.is_some() {
-            for (i, _) in on_floor.iter().enumerate().filter(|(_, f)| **f) {
+            for i in (0..LANES).filter(|i| on_floor >> i & 1 != 0) {
                 let ray = Ray {
                     origin: c.origin,
-                    dir: d.lane(i),
+                    dir: da.lane(i),
                 };
-                self.note(i, &ray, t[i]);
+                self.note(i, &ray, ta[i]);
             }
         }
-        // closest_among: the normal faces the ray.
-        let n = f8(|i| {
-            if (floor.normal.x * d.x[i]) + (floor.normal.y * d.y[i]) + (floor.normal.z * d.z[i])
-                > 0.0
-            {
-                -1.0
-            } else {
-                1.0
-            }
-        });
-        let nv = |i: usize| {
-            if n[i] < 0.0 {
-                -floor.normal
-            } else {
-                floor.normal
-            }
+        // closest_among: the normal faces the ray (`denom` is normal.dot(dir)).
+        let back = S::lt(k(0.0), denom);
+        let nn = L3 {
+            x: S::select(back, k(-floor.normal.x), k(floor.normal.x)),
+            y: S::select(back, k(-floor.normal.y), k(floor.normal.y)),
+            z: S::select(back, k(-floor.normal.z), k(floor.normal.z)),
         };
-        // point = ray.at(t): origin + dir * t
-        let o = c.origin;
-        let point = V8 {
-            x: f8(|i| o.x + d.x[i] * t[i]),
-            y: f8(|i| o.y + d.y[i] * t[i]),
-            z: f8(|i| o.z + d.z[i] * t[i]),
+        // point = ray.at(t): origin + dir * t; start = point + n * SURFACE_OFFSET
+        let point = splat3(s, c.origin).add(&d.scale(t));
+        let start = point.add(&nn.scale(k(SURFACE_OFFSET)));
+        let hit = Surface {
+            d,
+            point,
+            start,
+            nn,
         };
-        let start = V8 {
-            x: f8(|i| point.x[i] + nv(i).x * SURFACE_OFFSET),
-            y: f8(|i| point.y[i] + nv(i).y * SURFACE_OFFSET),
-            z: f8(|i| point.z[i] + nv(i).z * SURFACE_OFFSET),
-        };
-        let color = self.shade_lanes(floor, (x0, y), on_floor, (&d, &point, &start), &nv);
-        let srgb = |c: F8| {
-            #[cfg(target_arch = "x86_64")]
-            if AVX2 {
-                // SAFETY: `AVX2` is set only in the AVX2 build, which runs only
-                // where the CPU has it.
-                #[expect(unsafe_code, reason = "the AVX2 build's sRGB gathers")]
-                return unsafe { super::color::srgb8_avx2(c) };
-            }
-            srgb8_lanes(c)
-        };
+        let color = self.shade_lanes(s, floor, (x0, y), on_floor, &hit);
+        let color = store3::<S>(&color);
         self.colors.set([color.x, color.y, color.z]);
-        let (r, g, b) = (srgb(color.x), srgb(color.y), srgb(color.z));
-        let mut done = 0u8;
-        for (i, px) in out.chunks_exact_mut(4).enumerate() {
-            if on_floor[i] {
-                px.copy_from_slice(&[r[i], g[i], b[i], 255]);
-                done |= 1 << i;
-            }
-        }
-        done
+        (on_floor, color)
     }
+}
+
+/// Writes the lanes in `done` of `rgb` (sRGB bytes per channel) to `out`, 8
+/// RGBA pixels.
+#[inline(always)]
+fn write(out: &mut [u8], done: u8, [r, g, b]: [[u8; LANES]; 3]) {
+    for (i, px) in out.chunks_exact_mut(4).enumerate() {
+        if done >> i & 1 != 0 {
+            px.copy_from_slice(&[r[i], g[i], b[i], 255]);
+        }
+    }
+}
+
+/// Lane booleans as bits, bit `i` for lane `i`.
+#[inline(always)]
+fn bits(b: &[bool; LANES]) -> u8 {
+    let mut m = 0;
+    for (i, &b) in b.iter().enumerate() {
+        m |= u8::from(b) << i;
+    }
+    m
 }

@@ -39,3 +39,56 @@ pub(crate) fn load8(v: &[f32; 8]) -> std::arch::x86_64::__m256 {
         std::arch::x86_64::_mm256_loadu_ps(v.as_ptr())
     }
 }
+
+#[cfg(target_arch = "x86_64")]
+mod avx2;
+mod portable;
+
+#[cfg(target_arch = "x86_64")]
+pub(crate) use avx2::Avx2;
+pub(crate) use portable::Portable;
+
+use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
+
+/// Eight `f32` lanes and the operations the lane kernels use, each one IEEE
+/// operation per lane, exactly the scalar one: so a kernel written once over
+/// `S: Simd` computes in every lane what the scalar code computes, in the
+/// portable build ([`Portable`]) and the AVX2 one ([`Avx2`]). No fused
+/// multiply-add and no approximate reciprocal or square root exist here.
+///
+/// `Self` is a token: lane values are made only through it (`splat`, `load`,
+/// `mask`), so an AVX2 lane value exists only where the CPU has AVX2.
+pub(crate) trait Simd: Copy {
+    /// Eight floats. `-x` flips the sign bit, as the scalar `-x` does.
+    type F: Copy
+        + Add<Output = Self::F>
+        + Sub<Output = Self::F>
+        + Mul<Output = Self::F>
+        + Div<Output = Self::F>
+        + Neg<Output = Self::F>;
+    /// Eight conditions, one per lane.
+    type M: Copy + BitAnd<Output = Self::M> + BitOr<Output = Self::M> + Not<Output = Self::M>;
+
+    /// `v` in every lane.
+    fn splat(self, v: f32) -> Self::F;
+    /// The lanes `v[0]..v[7]`.
+    fn load(self, v: &[f32; 8]) -> Self::F;
+    /// Lane `i` set where bit `i` of `bits` is.
+    fn mask(self, bits: u8) -> Self::M;
+    /// The lanes as an array.
+    fn store(v: Self::F) -> [f32; 8];
+    /// Bit `i` set where lane `i` is.
+    fn bits(m: Self::M) -> u8;
+    /// `v.sqrt()`, correctly rounded.
+    fn sqrt(v: Self::F) -> Self::F;
+    /// `v.abs()`: the sign bit cleared.
+    fn abs(v: Self::F) -> Self::F;
+    /// `v.floor()` where `|v| < 2^22`; any finite value elsewhere.
+    fn floor_small(v: Self::F) -> Self::F;
+    /// `a < b` (false for NaN).
+    fn lt(a: Self::F, b: Self::F) -> Self::M;
+    /// `a <= b` (false for NaN).
+    fn le(a: Self::F, b: Self::F) -> Self::M;
+    /// `if m { a } else { b }` per lane.
+    fn select(m: Self::M, a: Self::F, b: Self::F) -> Self::F;
+}

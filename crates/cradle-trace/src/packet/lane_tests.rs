@@ -4,7 +4,7 @@
 //! a cylinder's axis (caps only) and across it.
 
 use super::occlusion::{blocks8, box8};
-use super::{LANES, V8};
+use super::{F8, LANES, V8};
 use crate::geometry::{Aabb, Cylinder, Ray, hit_sphere};
 use crate::prepared::Geom;
 use glam::Vec3;
@@ -189,4 +189,75 @@ fn lane_lookups_find_the_scalar_cells() {
         kinds.iter().all(|&k| k > 100),
         "every kind of answer: {kinds:?}"
     );
+}
+
+/// The checker colours of eight floor points by `surface_lanes` in `s`.
+fn checker_lanes<S: crate::simd::Simd>(s: S, floor: &super::Floor<'_>, x: &F8, z: &F8) -> V8 {
+    let point = super::L3 {
+        x: s.load(x),
+        y: s.splat(0.0),
+        z: s.load(z),
+    };
+    super::store3::<S>(&super::Packet::surface_lanes(s, floor, &point))
+}
+
+#[test]
+fn checker_lanes_pick_the_scalar_colours() {
+    use crate::scene::Material;
+    use crate::shade::base_color;
+    let material = Material {
+        color: Vec3::new(0.32, 0.22, 0.14),
+        specular: None,
+        reflective: 0.0,
+        checker: Some((Vec3::new(0.26, 0.17, 0.1), 0.05)),
+    };
+    let floor = super::Floor {
+        object: 0,
+        normal: Vec3::Y,
+        material: &material,
+        num: 0.0,
+    };
+    // Cell borders (exact multiples of the size and their neighbours), signed
+    // zeros, the edge of the exact range (2^22 cells) and beyond it, huge
+    // values, infinities and NaN: the far ones take the scalar path per lane.
+    let mut special = vec![0.0, -0.0, 0.05, -0.05, 0.1, -0.1, 1e-9, -1e-9];
+    for c in [1.0f32, 3.0, 2_097_151.0, 4_194_303.0, 4_194_304.0, 9e6] {
+        let v = c * 0.05;
+        special.extend([v, -v, v.next_up(), (-v).next_down(), v.next_down()]);
+    }
+    special.extend([
+        1e20,
+        -1e20,
+        3e38,
+        f32::INFINITY,
+        f32::NEG_INFINITY,
+        f32::NAN,
+    ]);
+    // The near values first: packets of them take the lanes' own parity.
+    let near = special.iter().filter(|v| v.abs() < 200_000.0).count();
+    special.sort_by_key(|v| v.abs() >= 200_000.0 || v.is_nan());
+    let mut rng = Lcg(11);
+    let mut pick = |round: usize, i: usize| -> f32 {
+        match round % 4 {
+            1 => special[(round * 7 + i * 13) % near],
+            2 if i == round % LANES => special[near + round % (special.len() - near)],
+            0 | 2 => rng.f() * 2.0,
+            _ => special[(round * 7 + i * 13) % special.len()],
+        }
+    };
+    for round in 0..2000 {
+        let x: F8 = std::array::from_fn(|i| pick(round, i));
+        let z: F8 = std::array::from_fn(|i| pick(round + 1, i + 3));
+        let mut builds = vec![checker_lanes(crate::simd::Portable, &floor, &x, &z)];
+        #[cfg(target_arch = "x86_64")]
+        if let Some(s) = crate::simd::Avx2::detect() {
+            builds.push(checker_lanes(s, &floor, &x, &z));
+        }
+        for got in builds {
+            for i in 0..LANES {
+                let want = base_color(&material, Vec3::new(x[i], 0.0, z[i]));
+                assert_eq!(got.lane(i), want, "at x {} z {}", x[i], z[i]);
+            }
+        }
+    }
 }

@@ -1,8 +1,8 @@
 //! The packet's shading, lane by lane (`shade` at depth 0 for floor hits): the
 //! lights, the shadow tests of a tile no caster can shadow, and the mirror rays of
-//! a tile with only planes to meet, for all lanes at once; the rest through the
-//! scalar queries, one lane at a time. Each line mirrors the scalar expression in
-//! its comment.
+//! a tile with only planes to meet, for all lanes at once in lane build `S`; the
+//! rest through the scalar queries, one lane at a time. Each line mirrors the
+//! scalar expression in its comment.
 
 #![expect(
     clippy::inline_always,
@@ -10,141 +10,123 @@
 )]
 
 use super::occlusion::{blocks8, box8};
-use super::{F8, Floor, LANES, Packet, V8, f8, lanes};
+use super::{F8, Floor, L3, LANES, Packet, Surface, V8, bits, f8, splat3, store3};
 use crate::geometry::{Ray, T_MIN};
 use crate::motion::Motion;
 use crate::scene::{Light, Shape};
-use crate::shade::{BAILOUT, floor_i64, reflect};
+use crate::shade::{BAILOUT, base_color, reflect};
+use crate::simd::Simd;
 use crate::tiles::Tiles;
 use glam::Vec3;
 
+/// Below this, every `f32` and the sum of two is an exact integer once floored.
+const SMALL: f32 = 4_194_304.0; // 2^22
+
 impl Packet<'_, '_> {
-    /// `shade` of floor hits at depth 0, lane by lane: `d` the rays' directions,
-    /// `point` their hits, `start` the secondary rays' origins, `nv(i)` the normal.
+    /// `shade` of floor hits at depth 0, lane by lane, at `hit`; `on_floor` the
+    /// lanes to shade (a bit each).
     #[inline(always)]
-    pub(super) fn shade_lanes(
+    pub(super) fn shade_lanes<S: Simd>(
         &self,
+        s: S,
         floor: &Floor<'_>,
         (x0, y): (u32, u32),
-        on_floor: [bool; LANES],
-        (d, point, start): (&V8, &V8, &V8),
-        nv: &impl Fn(usize) -> Vec3,
-    ) -> V8 {
+        on_floor: u8,
+        hit: &Surface<S::F>,
+    ) -> L3<S::F> {
+        let Surface {
+            d,
+            point,
+            start,
+            nn,
+        } = hit;
         let p = self.p;
         let m = floor.material;
+        let k = |v: f32| s.splat(v);
         let tile = Some((self.tiles, x0, y));
-        let (b, nn) = Self::surface_lanes(floor, point, nv);
-        let mut color = V8 {
-            x: [0.0; LANES],
-            y: [0.0; LANES],
-            z: [0.0; LANES],
-        };
+        let b = Self::surface_lanes(s, floor, point);
+        let mut color = splat3(s, Vec3::ZERO);
         for (li, light) in p.scene.lights.iter().enumerate() {
             let (to_light, dist, lc) = match *light {
                 Light::Ambient { color: c } => {
                     // color += base * c
-                    color.x = f8(|i| color.x[i] + b.x[i] * c.x);
-                    color.y = f8(|i| color.y[i] + b.y[i] * c.y);
-                    color.z = f8(|i| color.z[i] + b.z[i] * c.z);
+                    color = color.add(&b.mul(&splat3(s, c)));
                     continue;
                 }
                 Light::Point { position, color: c } => {
                     // d = position - point; len = d.length(); (d / len, len)
-                    let dv = V8 {
-                        x: f8(|i| position.x - point.x[i]),
-                        y: f8(|i| position.y - point.y[i]),
-                        z: f8(|i| position.z - point.z[i]),
-                    };
-                    let len = f8(|i| {
-                        ((dv.x[i] * dv.x[i]) + (dv.y[i] * dv.y[i]) + (dv.z[i] * dv.z[i])).sqrt()
-                    });
-                    let tl = V8 {
-                        x: f8(|i| dv.x[i] / len[i]),
-                        y: f8(|i| dv.y[i] / len[i]),
-                        z: f8(|i| dv.z[i] / len[i]),
-                    };
-                    (tl, len, c)
+                    let dv = splat3(s, position).sub(point);
+                    let len = S::sqrt(dv.dot(&dv));
+                    (dv.div(len), len, c)
                 }
                 Light::Directional {
                     direction,
                     color: c,
-                } => {
-                    let tl = -direction;
-                    let tl = V8 {
-                        x: [tl.x; LANES],
-                        y: [tl.y; LANES],
-                        z: [tl.z; LANES],
-                    };
-                    (tl, [f32::INFINITY; LANES], c)
-                }
+                } => (splat3(s, -direction), k(f32::INFINITY), c),
             };
             // lambert = n.dot(to_light)
-            let lambert = f8(|i| {
-                (nn.x[i] * to_light.x[i]) + (nn.y[i] * to_light.y[i]) + (nn.z[i] * to_light.z[i])
-            });
+            let lambert = nn.dot(&to_light);
             // Lanes off the floor are the scalar path's: no shadow rays for them.
-            let want = f8(|i| if on_floor[i] { lambert[i] } else { 0.0 });
+            let want = S::select(s.mask(on_floor), lambert, k(0.0));
+            // !(lambert <= 0): a NaN lambert is traced, as in the scalar code.
+            let traced = S::bits(!S::le(want, k(0.0)));
             if self.motion.is_some() {
-                self.note_shadows(&want, start, &to_light, &dist);
+                self.note_shadows(
+                    traced,
+                    &store3::<S>(start),
+                    &store3::<S>(&to_light),
+                    &S::store(dist),
+                );
             }
-            let blocked = self.shadows(floor, (x0, y, li), start, &to_light, &dist, &want);
+            let blocked = self.shadows(s, floor, (x0, y, li), (start, &to_light, dist), want);
             // Skipped where lambert <= 0 or the light is blocked; else
             // color += base * light_color * lambert.
-            // !(lambert <= 0): a NaN lambert is not skipped.
-            let lit: [bool; LANES] =
-                lanes(|i| (lambert[i] > 0.0 || lambert[i].is_nan()) && !blocked[i]);
-            let add = |c: &F8, b: &F8, l: f32| {
-                f8(|i| {
-                    if lit[i] {
-                        c[i] + (b[i] * l) * lambert[i]
-                    } else {
-                        c[i]
-                    }
-                })
-            };
-            color = V8 {
-                x: add(&color.x, &b.x, lc.x),
-                y: add(&color.y, &b.y, lc.y),
-                z: add(&color.z, &b.z, lc.z),
+            let lit = !S::le(lambert, k(0.0)) & !blocked;
+            let add = |c: S::F, b: S::F, l: f32| S::select(lit, c + (b * k(l)) * lambert, c);
+            color = L3 {
+                x: add(color.x, b.x, lc.x),
+                y: add(color.y, b.y, lc.y),
+                z: add(color.z, b.z, lc.z),
             };
             if let Some(exponent) = m.specular {
                 // mirrored = 2.0 * lambert * n - to_light; facing = mirrored.dot(-dir)
-                let facing = f8(|i| {
-                    let s = 2.0 * lambert[i];
-                    let mx = s * nn.x[i] - to_light.x[i];
-                    let my = s * nn.y[i] - to_light.y[i];
-                    let mz = s * nn.z[i] - to_light.z[i];
-                    (mx * -d.x[i]) + (my * -d.y[i]) + (mz * -d.z[i])
-                });
-                for i in 0..LANES {
-                    if lit[i] && facing[i] > 0.0 {
-                        let k = facing[i].powf(exponent);
-                        color.x[i] += lc.x * k;
-                        color.y[i] += lc.y * k;
-                        color.z[i] += lc.z * k;
-                    }
+                let mirrored = nn.scale(k(2.0) * lambert).sub(&to_light);
+                let facing = mirrored.dot(&d.neg());
+                let shiny = lit & S::lt(k(0.0), facing);
+                let on = S::bits(shiny);
+                if on != 0 {
+                    // color += light_color * facing.powf(exponent)
+                    let f = S::store(facing);
+                    let pk = s.load(&f8(|i| {
+                        if on >> i & 1 != 0 {
+                            f[i].powf(exponent)
+                        } else {
+                            0.0
+                        }
+                    }));
+                    let add = |c: S::F, l: f32| S::select(shiny, c + k(l) * pk, c);
+                    color = L3 {
+                        x: add(color.x, lc.x),
+                        y: add(color.y, lc.y),
+                        z: add(color.z, lc.z),
+                    };
                 }
             }
         }
         let r = m.reflective;
         if r > 0.0 && 0 < p.scene.max_depth && r * self.bound >= BAILOUT {
-            let refl = self.mirrors(floor, (x0, y, on_floor), d, start, nv, r, tile);
+            let refl = self.mirrors(s, floor, (x0, y, on_floor), hit, r, tile);
             // color = color * (1.0 - r) + reflected * r
-            for i in 0..LANES {
-                color.x[i] = color.x[i] * (1.0 - r) + refl.x[i] * r;
-                color.y[i] = color.y[i] * (1.0 - r) + refl.y[i] * r;
-                color.z[i] = color.z[i] * (1.0 - r) + refl.z[i] * r;
-            }
+            color = color.scale(k(1.0 - r)).add(&refl.scale(k(r)));
         }
         color
     }
 
     /// In a tracked frame, notes the shadow rays the lanes trace (`blocked`
-    /// notes each one whose lambert, here `lit`, is not <= 0; lanes off the floor
-    /// have 0).
+    /// notes each one whose lambert is not <= 0, the lanes in `traced`).
     #[inline(never)]
-    fn note_shadows(&self, lit: &F8, start: &V8, to_light: &V8, dist: &F8) {
-        for i in (0..LANES).filter(|&i| lit[i] > 0.0 || lit[i].is_nan()) {
+    fn note_shadows(&self, traced: u8, start: &V8, to_light: &V8, dist: &F8) {
+        for i in (0..LANES).filter(|&i| traced >> i & 1 != 0) {
             let shadow = Ray {
                 origin: start.lane(i),
                 dir: to_light.lane(i),
@@ -154,32 +136,37 @@ impl Packet<'_, '_> {
     }
 
     /// The lanes' base colour (`base_color`: a checker on the x-z grid, or
-    /// plain) and normal.
+    /// plain). Where both coordinates are small, `floor(x) + floor(z)` and its
+    /// parity are exact in `f32`; elsewhere (far away, or NaN) each lane takes
+    /// `base_color` itself.
     #[inline(always)]
-    fn surface_lanes(floor: &Floor<'_>, point: &V8, nv: &impl Fn(usize) -> Vec3) -> (V8, V8) {
+    pub(super) fn surface_lanes<S: Simd>(s: S, floor: &Floor<'_>, point: &L3<S::F>) -> L3<S::F> {
         let m = floor.material;
-        let base: [Vec3; LANES] = lanes(|i| match m.checker {
-            Some((other, size)) => {
-                let cell = floor_i64(point.x[i] / size) + floor_i64(point.z[i] / size);
-                if cell.rem_euclid(2) == 0 {
-                    m.color
-                } else {
-                    other
-                }
-            }
-            None => m.color,
-        });
-        let b = V8 {
-            x: f8(|i| base[i].x),
-            y: f8(|i| base[i].y),
-            z: f8(|i| base[i].z),
+        let Some((other, size)) = m.checker else {
+            return splat3(s, m.color);
         };
-        let nn = V8 {
-            x: f8(|i| nv(i).x),
-            y: f8(|i| nv(i).y),
-            z: f8(|i| nv(i).z),
-        };
-        (b, nn)
+        let k = |v: f32| s.splat(v);
+        // cell = floor_i64(point.x / size) + floor_i64(point.z / size)
+        let (qx, qz) = (point.x / k(size), point.z / k(size));
+        let small = S::lt(S::abs(qx), k(SMALL)) & S::lt(S::abs(qz), k(SMALL));
+        if S::bits(small) != 0xFF {
+            let (px, pz) = (S::store(point.x), S::store(point.z));
+            let base: [Vec3; LANES] =
+                std::array::from_fn(|i| base_color(m, Vec3::new(px[i], 0.0, pz[i])));
+            return L3 {
+                x: s.load(&f8(|i| base[i].x)),
+                y: s.load(&f8(|i| base[i].y)),
+                z: s.load(&f8(|i| base[i].z)),
+            };
+        }
+        let cell = S::floor_small(qx) + S::floor_small(qz);
+        // cell.rem_euclid(2) == 0: even cells are the material's colour.
+        let odd = S::lt(k(0.0), cell - k(2.0) * S::floor_small(cell * k(0.5)));
+        L3 {
+            x: S::select(odd, k(other.x), k(m.color.x)),
+            y: S::select(odd, k(other.y), k(m.color.y)),
+            z: S::select(odd, k(other.z), k(m.color.z)),
+        }
     }
 
     /// Per lane, whether the shadow ray from `start` towards light `li` is
@@ -187,122 +174,105 @@ impl Packet<'_, '_> {
     /// caster can shadow the tile, only the planes are tested; elsewhere what
     /// the lane's footprint cell lists too ([`Self::occluded_lanes`]).
     #[inline(always)]
-    fn shadows(
+    fn shadows<S: Simd>(
         &self,
+        s: S,
         floor: &Floor<'_>,
         (x0, y, li): (u32, u32, usize),
-        start: &V8,
-        to_light: &V8,
-        dist: &F8,
-        lambert: &F8,
-    ) -> [bool; LANES] {
+        (start, to_light, dist): (&L3<S::F>, &L3<S::F>, S::F),
+        lambert: S::F,
+    ) -> S::M {
         if self.tiles.shadow_clear(floor.object, li, x0, y) {
-            let mut blocked = [false; LANES];
+            let mut blocked = s.mask(0);
             for &k in self.p.planes() {
-                let hit = self.plane_hits(k, start, to_light);
-                for i in 0..LANES {
-                    blocked[i] |= hit[i] < dist[i];
-                }
+                blocked = blocked | S::lt(self.plane_hits(s, k, start, to_light), dist);
             }
             return blocked;
         }
-        let want = lanes(|i| lambert[i] > 0.0);
-        self.occluded_lanes((floor.object, li), start, to_light, dist, want)
+        let want = S::bits(S::lt(s.splat(0.0), lambert));
+        let (start, dir, dist) = (store3::<S>(start), store3::<S>(to_light), S::store(dist));
+        s.mask(bits(&self.occluded_lanes(
+            (floor.object, li),
+            &start,
+            &dir,
+            &dist,
+            std::array::from_fn(|i| want >> i & 1 != 0),
+        )))
     }
 
     /// Per lane, where the ray from `origin` along `dir` meets plane object `k`
     /// (`hit_plane`), or infinity for a miss.
     #[inline(always)]
-    pub(super) fn plane_hits(&self, k: usize, origin: &V8, dir: &V8) -> F8 {
+    pub(super) fn plane_hits<S: Simd>(
+        &self,
+        s: S,
+        k: usize,
+        origin: &L3<S::F>,
+        dir: &L3<S::F>,
+    ) -> S::F {
         let Shape::Plane { point, normal } = self.p.scene.objects[k].shape else {
             unreachable!("planes() lists planes")
         };
         // denom = dir.dot(normal); t = (point - origin).dot(normal) / denom
-        let denom = dir.dot(normal);
-        f8(|i| {
-            let t = (((point.x - origin.x[i]) * normal.x)
-                + ((point.y - origin.y[i]) * normal.y)
-                + ((point.z - origin.z[i]) * normal.z))
-                / denom[i];
-            if denom[i].abs() >= 1e-9 && t > T_MIN {
-                t
-            } else {
-                f32::INFINITY
-            }
-        })
+        let denom = dir.dot(&splat3(s, normal));
+        let t = splat3(s, point).sub(origin).dot(&splat3(s, normal)) / denom;
+        let hit = S::le(s.splat(1e-9), S::abs(denom)) & S::lt(s.splat(T_MIN), t);
+        S::select(hit, t, s.splat(f32::INFINITY))
     }
 
     /// Per lane, the radiance the floor's mirror rays bring back (`reflect` at
     /// depth 1 with weight `r`): lanes whose rays meet none of the tile's mirror
     /// candidates see the background, found for all lanes at once; the others
     /// go through `reflect`.
-    #[expect(clippy::too_many_arguments, reason = "the lanes' state, passed down")]
     #[inline(always)]
-    fn mirrors(
+    fn mirrors<S: Simd>(
         &self,
+        s: S,
         floor: &Floor<'_>,
-        (x0, y, on_floor): (u32, u32, [bool; LANES]),
-        d: &V8,
-        start: &V8,
-        nv: &impl Fn(usize) -> Vec3,
+        (x0, y, on_floor): (u32, u32, u8),
+        Surface { d, start, nn, .. }: &Surface<S::F>,
         r: f32,
         tile: Option<(&Tiles, u32, u32)>,
-    ) -> V8 {
+    ) -> L3<S::F> {
         // dir - 2.0 * dir.dot(n) * n
-        let dir = V8 {
-            x: f8(|i| {
-                let n = nv(i);
-                d.x[i] - (2.0 * ((d.x[i] * n.x) + (d.y[i] * n.y) + (d.z[i] * n.z))) * n.x
-            }),
-            y: f8(|i| {
-                let n = nv(i);
-                d.y[i] - (2.0 * ((d.x[i] * n.x) + (d.y[i] * n.y) + (d.z[i] * n.z))) * n.y
-            }),
-            z: f8(|i| {
-                let n = nv(i);
-                d.z[i] - (2.0 * ((d.x[i] * n.x) + (d.y[i] * n.y) + (d.z[i] * n.z))) * n.z
-            }),
-        };
+        let dir = d.sub(&nn.scale(s.splat(2.0) * d.dot(nn)));
         // Lanes whose mirror ray meets none of the tile's mirror candidates see
         // the background (`closest_among` finds nothing): the planes' and the
         // others' box and hit tests over the lanes, as in `nearer_than`.
-        let mut missed = [false; LANES];
+        let (start_a, dir_a) = (store3::<S>(start), store3::<S>(&dir));
+        let mut missed = 0u8;
         if let Some(list) = self.tiles.mirror_at(floor.object, x0, y) {
-            let inv = V8 {
-                x: f8(|i| 1.0 / dir.x[i]),
-                y: f8(|i| 1.0 / dir.y[i]),
-                z: f8(|i| 1.0 / dir.z[i]),
-            };
+            let one = s.splat(1.0);
+            let inv = store3::<S>(&L3 {
+                x: one / dir.x,
+                y: one / dir.y,
+                z: one / dir.z,
+            });
             let far = [f32::INFINITY; LANES];
-            let mut met = [false; LANES];
+            let mut met = 0u8;
             for &k in list {
                 if matches!(self.p.scene.objects[k].shape, Shape::Plane { .. }) {
-                    let t = self.plane_hits(k, start, &dir);
-                    for i in 0..LANES {
-                        met[i] |= t[i] < f32::INFINITY;
-                    }
+                    let t = self.plane_hits(s, k, start, &dir);
+                    met |= S::bits(S::lt(t, s.splat(f32::INFINITY)));
                     continue;
                 }
-                let inside = box8(&self.p.boxes[k], start, &inv, &far);
-                if inside.contains(&true) {
-                    let hit = blocks8(self.p.geom(k), start, &dir, &far);
-                    for i in 0..LANES {
-                        met[i] |= inside[i] && hit[i];
-                    }
+                let inside = bits(&box8(&self.p.boxes[k], &start_a, &inv, &far));
+                if inside != 0 {
+                    met |= inside & bits(&blocks8(self.p.geom(k), &start_a, &dir_a, &far));
                 }
             }
-            missed = met.map(|m| !m);
+            missed = !met;
         }
         let bg = self.p.scene.background;
-        let lanes: [Vec3; LANES] = lanes(|i| {
-            if !on_floor[i] {
+        let lanes: [Vec3; LANES] = std::array::from_fn(|i| {
+            if on_floor >> i & 1 == 0 {
                 return bg;
             }
             let mirror = Ray {
-                origin: start.lane(i),
-                dir: dir.lane(i),
+                origin: start_a.lane(i),
+                dir: dir_a.lane(i),
             };
-            if missed[i] {
+            if missed >> i & 1 != 0 {
                 // `reflect` would find nothing and note the ray to infinity.
                 self.note(i, &mirror, f32::INFINITY);
                 return bg;
@@ -329,10 +299,10 @@ impl Packet<'_, '_> {
             self.scratch.set(motion.segs);
             c
         });
-        V8 {
-            x: f8(|i| lanes[i].x),
-            y: f8(|i| lanes[i].y),
-            z: f8(|i| lanes[i].z),
+        L3 {
+            x: s.load(&f8(|i| lanes[i].x)),
+            y: s.load(&f8(|i| lanes[i].y)),
+            z: s.load(&f8(|i| lanes[i].z)),
         }
     }
 }

@@ -12,10 +12,11 @@
     reason = "the lane code is inlined into each entry point, so the AVX2 one compiles it for AVX2"
 )]
 
-use super::{F8, LANES, Packet, V8, f8};
+use super::{F8, LANES, Packet, V8, f8, load3};
 use crate::geometry::{Aabb, T_MIN};
 use crate::prepared::Geom;
 use crate::shadow::Lookup;
+use crate::simd::{Portable, Simd};
 use glam::Vec3;
 
 pub(super) type B8 = [bool; LANES];
@@ -218,7 +219,12 @@ impl Packet<'_, '_> {
         let mut out = [false; LANES];
         // The planes first: a hit before dist on any of them.
         for &k in p.planes() {
-            let t = self.plane_hits(k, start, dir);
+            let t = Portable::store(self.plane_hits(
+                Portable,
+                k,
+                &load3(Portable, start),
+                &load3(Portable, dir),
+            ));
             for i in 0..LANES {
                 out[i] |= want[i] && t[i] < dist[i];
             }

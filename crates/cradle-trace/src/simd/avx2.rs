@@ -1,0 +1,149 @@
+//! The AVX2 lane build: each lane operation one AVX instruction on a 256-bit
+//! register. Its values exist only where the CPU has AVX2: they are made through
+//! the [`Avx2`] token, which only [`Avx2::detect`] hands out, and every
+//! operation here is inlined into a caller compiled for AVX2 (the intrinsics
+//! inline once the kernel is). `vroundps` towards minus infinity is `floor`;
+//! comparisons are ordered (false for NaN).
+
+#![expect(
+    clippy::inline_always,
+    reason = "each operation must inline into its kernel, compiled for AVX2"
+)]
+#![expect(
+    unsafe_code,
+    reason = "AVX intrinsics, run only where an `Avx2` token proves the CPU has AVX2"
+)]
+
+use super::Simd;
+use std::arch::x86_64::{
+    __m256, _CMP_LE_OQ, _CMP_LT_OQ, _mm256_add_ps, _mm256_and_ps, _mm256_and_si256,
+    _mm256_andnot_ps, _mm256_blendv_ps, _mm256_castsi256_ps, _mm256_cmp_ps, _mm256_cmpeq_epi32,
+    _mm256_div_ps, _mm256_floor_ps, _mm256_loadu_ps, _mm256_movemask_ps, _mm256_mul_ps,
+    _mm256_or_ps, _mm256_set1_epi32, _mm256_set1_ps, _mm256_setr_epi32, _mm256_sqrt_ps,
+    _mm256_storeu_ps, _mm256_sub_ps, _mm256_xor_ps,
+};
+use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
+
+/// The AVX2 token: proof that the CPU has AVX2.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Avx2(());
+
+impl Avx2 {
+    /// The token, where the AVX2 build is to run (`super::avx2`).
+    #[inline]
+    pub(crate) fn detect() -> Option<Self> {
+        super::avx2().then_some(Self(()))
+    }
+}
+
+/// Eight floats in an AVX register.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct A8(__m256);
+
+/// Eight conditions: all ones in a set lane, zero elsewhere.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct AM(__m256);
+
+macro_rules! binary {
+    ($tr:ident, $f:ident, $ty:ident, $op:ident) => {
+        impl $tr for $ty {
+            type Output = $ty;
+            #[inline(always)]
+            fn $f(self, b: $ty) -> $ty {
+                // SAFETY: a value of this type exists only where the CPU has AVX2.
+                $ty(unsafe { $op(self.0, b.0) })
+            }
+        }
+    };
+}
+binary!(Add, add, A8, _mm256_add_ps);
+binary!(Sub, sub, A8, _mm256_sub_ps);
+binary!(Mul, mul, A8, _mm256_mul_ps);
+binary!(Div, div, A8, _mm256_div_ps);
+binary!(BitAnd, bitand, AM, _mm256_and_ps);
+binary!(BitOr, bitor, AM, _mm256_or_ps);
+
+impl Neg for A8 {
+    type Output = A8;
+    #[inline(always)]
+    fn neg(self) -> A8 {
+        // SAFETY: as for every A8, the CPU has AVX2.
+        A8(unsafe { _mm256_xor_ps(self.0, _mm256_set1_ps(-0.0)) })
+    }
+}
+
+impl Not for AM {
+    type Output = AM;
+    #[inline(always)]
+    fn not(self) -> AM {
+        // SAFETY: as for every AM, the CPU has AVX2.
+        AM(unsafe { _mm256_xor_ps(self.0, _mm256_castsi256_ps(_mm256_set1_epi32(-1))) })
+    }
+}
+
+impl Simd for Avx2 {
+    type F = A8;
+    type M = AM;
+
+    #[inline(always)]
+    fn splat(self, v: f32) -> A8 {
+        // SAFETY: the token proves the CPU has AVX2.
+        A8(unsafe { _mm256_set1_ps(v) })
+    }
+    #[inline(always)]
+    fn load(self, v: &[f32; 8]) -> A8 {
+        // SAFETY: the token proves AVX2; the load reads exactly the eight floats of `v`.
+        A8(unsafe { _mm256_loadu_ps(v.as_ptr()) })
+    }
+    #[inline(always)]
+    fn mask(self, bits: u8) -> AM {
+        // SAFETY: the token proves the CPU has AVX2.
+        AM(unsafe {
+            let each = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+            let set = _mm256_and_si256(_mm256_set1_epi32(i32::from(bits)), each);
+            _mm256_castsi256_ps(_mm256_cmpeq_epi32(set, each))
+        })
+    }
+    #[inline(always)]
+    fn store(v: A8) -> [f32; 8] {
+        let mut out = [0.0; 8];
+        // SAFETY: the value proves AVX2; the store writes exactly the eight floats of `out`.
+        unsafe { _mm256_storeu_ps(out.as_mut_ptr(), v.0) };
+        out
+    }
+    #[inline(always)]
+    fn bits(m: AM) -> u8 {
+        // SAFETY: the value proves AVX2. Eight sign bits: a value below 256.
+        (unsafe { _mm256_movemask_ps(m.0) }) as u8
+    }
+    #[inline(always)]
+    fn sqrt(v: A8) -> A8 {
+        // SAFETY: the value proves AVX2.
+        A8(unsafe { _mm256_sqrt_ps(v.0) })
+    }
+    #[inline(always)]
+    fn abs(v: A8) -> A8 {
+        // SAFETY: the value proves AVX2.
+        A8(unsafe { _mm256_andnot_ps(_mm256_set1_ps(-0.0), v.0) })
+    }
+    #[inline(always)]
+    fn floor_small(v: A8) -> A8 {
+        // SAFETY: the value proves AVX2.
+        A8(unsafe { _mm256_floor_ps(v.0) })
+    }
+    #[inline(always)]
+    fn lt(a: A8, b: A8) -> AM {
+        // SAFETY: the values prove AVX2.
+        AM(unsafe { _mm256_cmp_ps::<_CMP_LT_OQ>(a.0, b.0) })
+    }
+    #[inline(always)]
+    fn le(a: A8, b: A8) -> AM {
+        // SAFETY: the values prove AVX2.
+        AM(unsafe { _mm256_cmp_ps::<_CMP_LE_OQ>(a.0, b.0) })
+    }
+    #[inline(always)]
+    fn select(m: AM, a: A8, b: A8) -> A8 {
+        // SAFETY: the values prove AVX2.
+        A8(unsafe { _mm256_blendv_ps(b.0, a.0, m.0) })
+    }
+}
