@@ -38,15 +38,15 @@ use std::cell::{Cell, RefCell};
 /// Pixels per packet.
 pub const LANES: usize = 8;
 
-#[cfg(target_arch = "x86_64")]
-mod avx;
 #[cfg(test)]
 mod lane_tests;
 mod lanes;
 mod occlusion;
 mod vec;
 
-use vec::{L3, Surface, load3, splat3, store3};
+#[cfg(test)]
+use vec::load3;
+use vec::{L3, Surface, splat3, store3};
 
 pub use super::simd::force_portable;
 
@@ -271,16 +271,16 @@ impl Packet<'_, '_> {
         // closest_among, after the plane: each other candidate through its box
         // with the plane's t as the limit. Lanes that meet one first are the
         // scalar path's.
-        let (da, ta) = (store3::<S>(&d), S::store(t));
         let on_floor = if others.is_empty() {
             0xFF
         } else {
-            !bits(&self.nearer_than(others, &da, &ta))
+            !self.nearer_than(s, others, &d, t)
         };
         if on_floor == 0 {
             return (0, V8::ZERO);
         }
         if self.motion.is_some() {
+            let (da, ta) = (store3::<S>(&d), S::store(t));
             for i in (0..LANES).filter(|i| on_floor >> i & 1 != 0) {
                 let ray = Ray {
                     origin: c.origin,
@@ -321,14 +321,4 @@ fn write(out: &mut [u8], done: u8, [r, g, b]: [[u8; LANES]; 3]) {
             px.copy_from_slice(&[r[i], g[i], b[i], 255]);
         }
     }
-}
-
-/// Lane booleans as bits, bit `i` for lane `i`.
-#[inline(always)]
-fn bits(b: &[bool; LANES]) -> u8 {
-    let mut m = 0;
-    for (i, &b) in b.iter().enumerate() {
-        m |= u8::from(b) << i;
-    }
-    m
 }

@@ -36,7 +36,6 @@ pub(crate) enum Lookup {
 /// [`Footprints::lookup`]'s numbers: the plane, the light (a point, or a
 /// direction of travel), the light's height over the plane (point) or the
 /// direction's component along the normal, and the grid.
-#[cfg(target_arch = "x86_64")]
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct GridView {
     pub origin: Vec3,
@@ -284,7 +283,6 @@ impl Footprints {
     }
 
     /// What [`Self::lookup`] computes with, for the lanes' build of it.
-    #[cfg(target_arch = "x86_64")]
     #[must_use]
     pub(crate) fn view(&self) -> GridView {
         let (light, scale) = match self.source {

@@ -83,6 +83,13 @@ pub(crate) trait Simd: Copy {
     fn sqrt(v: Self::F) -> Self::F;
     /// `v.abs()`: the sign bit cleared.
     fn abs(v: Self::F) -> Self::F;
+    /// `if a < b { a } else { b }` (glam's `min`).
+    fn min(a: Self::F, b: Self::F) -> Self::F;
+    /// `if a > b { a } else { b }` (glam's `max`).
+    fn max(a: Self::F, b: Self::F) -> Self::F;
+    /// `v as i32` (towards zero) where `v` lies in `i32`'s range; any value
+    /// elsewhere.
+    fn trunc(v: Self::F) -> [i32; 8];
     /// `v.floor()` where `|v| < 2^22`; any finite value elsewhere.
     fn floor_small(v: Self::F) -> Self::F;
     /// `a < b` (false for NaN).

@@ -3,10 +3,11 @@
 //! (zero direction components, infinite inverses), from inside, grazing, along
 //! a cylinder's axis (caps only) and across it.
 
-use super::occlusion::{blocks8, box8};
-use super::{F8, LANES, V8};
+use super::occlusion::{blocks8, box8, lookup};
+use super::{F8, LANES, V8, load3};
 use crate::geometry::{Aabb, Cylinder, Ray, hit_sphere};
 use crate::prepared::Geom;
+use crate::simd::{Portable, Simd};
 use glam::Vec3;
 
 struct Lcg(u32);
@@ -47,13 +48,38 @@ fn lanes_of(rays: &[Ray; LANES]) -> (V8, V8, V8) {
     (v(&|r| r.origin), v(&|r| r.dir), v(&|r| r.dir.recip()))
 }
 
-/// Runs `check` with the AVX2 build (where the CPU has it) and the portable one.
-fn both_builds(check: impl Fn()) {
-    check();
-    crate::simd::force_portable(true);
-    check();
-    crate::simd::force_portable(false);
+/// The box, sphere, string and rod tests of the lanes `(o, d, inv)` in build
+/// `s`, as bits.
+fn four<S: Simd>(
+    s: S,
+    (boxed, shapes): (&Aabb, &[Geom; 3]),
+    (o, d, inv): &(V8, V8, V8),
+    t_max: f32,
+) -> [u8; 4] {
+    let (o, d, inv) = (load3(s, o), load3(s, d), load3(s, inv));
+    let t = s.splat(t_max);
+    let hit = |g: &Geom| S::bits(blocks8(s, g, &o, &d, t));
+    [
+        S::bits(box8(s, boxed, &o, &inv, t)),
+        hit(&shapes[0]),
+        hit(&shapes[1]),
+        hit(&shapes[2]),
+    ]
 }
+
+/// `f(build)` for the portable build and, where the CPU has it, the AVX2 one.
+macro_rules! each_build {
+    ($f:expr) => {{
+        let mut out = vec![$f(Portable)];
+        #[cfg(target_arch = "x86_64")]
+        if let Some(s) = crate::simd::Avx2::detect() {
+            out.push($f(s));
+        }
+        out
+    }};
+}
+
+const NAMES: [&str; 4] = ["box", "sphere", "string", "rod"];
 
 #[test]
 fn lane_tests_answer_as_the_scalar_tests() {
@@ -74,7 +100,7 @@ fn lane_tests_answer_as_the_scalar_tests() {
         min: centre - 0.02,
         max: centre + 0.02,
     };
-    let seen = std::cell::Cell::new([0u32; 4]);
+    let mut seen = [0u32; 4];
     for round in 0..600 {
         let target = match round % 3 {
             0 => centre,
@@ -82,53 +108,37 @@ fn lane_tests_answer_as_the_scalar_tests() {
             _ => Vec3::new(0.1, 0.25, 0.05),
         };
         let r = rays(&mut rng, target, round);
-        let (o, d, inv) = lanes_of(&r);
+        let lanes = lanes_of(&r);
+        let shapes = [sphere, Geom::Cylinder(cyl), Geom::Cylinder(rod)];
         for t_max in [f32::INFINITY, 0.3, 0.01] {
-            let tm = [t_max; LANES];
-            both_builds(|| {
-                let got = box8(&boxed, &o, &inv, &tm);
-                let hits = blocks8(&sphere, &o, &d, &tm);
-                let on_cyl = blocks8(&Geom::Cylinder(cyl), &o, &d, &tm);
-                let on_rod = blocks8(&Geom::Cylinder(rod), &o, &d, &tm);
-                for i in 0..LANES {
-                    let ray = &r[i];
-                    assert_eq!(
-                        got[i],
+            let builds = each_build!(|s| four(s, (&boxed, &shapes), &lanes, t_max));
+            for got in builds {
+                for (i, ray) in r.iter().enumerate() {
+                    let want = [
                         boxed.hit(ray, ray.dir.recip(), t_max),
-                        "box {ray:?}"
-                    );
-                    let want = hit_sphere(ray, centre, 0.02).is_some_and(|t| t < t_max);
-                    assert_eq!(hits[i], want, "sphere {ray:?} {t_max}");
-                    let want = cyl.hit(ray).is_some_and(|(t, _)| t < t_max);
-                    assert_eq!(on_cyl[i], want, "string {ray:?} {t_max}");
-                    let want = rod.hit(ray).is_some_and(|(t, _)| t < t_max);
-                    assert_eq!(on_rod[i], want, "rod {ray:?} {t_max}");
-                    let mut n = seen.get();
-                    for (k, h) in [got[i], hits[i], on_cyl[i], on_rod[i]]
-                        .into_iter()
-                        .enumerate()
-                    {
-                        n[k] += u32::from(h);
+                        hit_sphere(ray, centre, 0.02).is_some_and(|t| t < t_max),
+                        cyl.hit(ray).is_some_and(|(t, _)| t < t_max),
+                        rod.hit(ray).is_some_and(|(t, _)| t < t_max),
+                    ];
+                    for (k, (&bits, want)) in got.iter().zip(want).enumerate() {
+                        let on = bits >> i & 1 != 0;
+                        assert_eq!(on, want, "{} {ray:?} {t_max}", NAMES[k]);
+                        seen[k] += u32::from(on);
                     }
-                    seen.set(n);
                 }
-            });
+            }
         }
     }
-    // Each test both hit and missed many times (14,400 lane tests each).
-    for (what, n) in ["box", "sphere", "string", "rod"].iter().zip(seen.get()) {
+    // Each test both hit and missed many times (14,400 lane tests per build).
+    for (what, n) in NAMES.iter().zip(seen) {
         assert!(n > 300 && n < 14_000, "{what}: {n} hits");
     }
 }
 
-#[cfg(target_arch = "x86_64")]
 #[test]
 fn lane_lookups_find_the_scalar_cells() {
     use crate::scene::Light;
     use crate::shadow::{Footprints, Lookup};
-    if !std::arch::is_x86_feature_detected!("avx2") {
-        return;
-    }
     let bounded: Vec<(usize, Aabb)> = (0..7)
         .map(|i| {
             let c = Vec3::new(i as f32 * 0.04 - 0.12, 0.09, 0.0);
@@ -171,12 +181,11 @@ fn lane_lookups_find_the_scalar_cells() {
                 }),
                 z: std::array::from_fn(|_| rng.f() * 0.3),
             };
-            // SAFETY: the CPU has AVX2, checked above.
-            #[expect(unsafe_code, reason = "calling the AVX2 build under test")]
-            let got = unsafe { super::avx::lookup(&fp.view(), &start) };
-            for (i, &got) in got.iter().enumerate() {
-                let want = fp.lookup(start.lane(i));
-                assert_eq!(got, want, "{light:?} at {:?}", start.lane(i));
+            let builds = each_build!(|s| lookup(s, &fp.view(), &load3(s, &start)));
+            for (i, want) in (0..LANES).map(|i| (i, fp.lookup(start.lane(i)))) {
+                for got in &builds {
+                    assert_eq!(got[i], want, "{light:?} at {:?}", start.lane(i));
+                }
                 kinds[match want {
                     Lookup::Unlit => 0,
                     Lookup::Always => 1,
@@ -192,7 +201,7 @@ fn lane_lookups_find_the_scalar_cells() {
 }
 
 /// The checker colours of eight floor points by `surface_lanes` in `s`.
-fn checker_lanes<S: crate::simd::Simd>(s: S, floor: &super::Floor<'_>, x: &F8, z: &F8) -> V8 {
+fn checker_lanes<S: Simd>(s: S, floor: &super::Floor<'_>, x: &F8, z: &F8) -> V8 {
     let point = super::L3 {
         x: s.load(x),
         y: s.splat(0.0),
@@ -248,12 +257,7 @@ fn checker_lanes_pick_the_scalar_colours() {
     for round in 0..2000 {
         let x: F8 = std::array::from_fn(|i| pick(round, i));
         let z: F8 = std::array::from_fn(|i| pick(round + 1, i + 3));
-        let mut builds = vec![checker_lanes(crate::simd::Portable, &floor, &x, &z)];
-        #[cfg(target_arch = "x86_64")]
-        if let Some(s) = crate::simd::Avx2::detect() {
-            builds.push(checker_lanes(s, &floor, &x, &z));
-        }
-        for got in builds {
+        for got in each_build!(|s| checker_lanes(s, &floor, &x, &z)) {
             for i in 0..LANES {
                 let want = base_color(&material, Vec3::new(x[i], 0.0, z[i]));
                 assert_eq!(got.lane(i), want, "at x {} z {}", x[i], z[i]);

@@ -10,7 +10,7 @@
 )]
 
 use super::occlusion::{blocks8, box8};
-use super::{F8, Floor, L3, LANES, Packet, Surface, V8, bits, f8, splat3, store3};
+use super::{F8, Floor, L3, LANES, Packet, Surface, V8, f8, lanes, splat3, store3};
 use crate::geometry::{Ray, T_MIN};
 use crate::motion::Motion;
 use crate::scene::{Light, Shape};
@@ -151,8 +151,7 @@ impl Packet<'_, '_> {
         let small = S::lt(S::abs(qx), k(SMALL)) & S::lt(S::abs(qz), k(SMALL));
         if S::bits(small) != 0xFF {
             let (px, pz) = (S::store(point.x), S::store(point.z));
-            let base: [Vec3; LANES] =
-                std::array::from_fn(|i| base_color(m, Vec3::new(px[i], 0.0, pz[i])));
+            let base: [Vec3; LANES] = lanes(|i| base_color(m, Vec3::new(px[i], 0.0, pz[i])));
             return L3 {
                 x: s.load(&f8(|i| base[i].x)),
                 y: s.load(&f8(|i| base[i].y)),
@@ -190,14 +189,7 @@ impl Packet<'_, '_> {
             return blocked;
         }
         let want = S::bits(S::lt(s.splat(0.0), lambert));
-        let (start, dir, dist) = (store3::<S>(start), store3::<S>(to_light), S::store(dist));
-        s.mask(bits(&self.occluded_lanes(
-            (floor.object, li),
-            &start,
-            &dir,
-            &dist,
-            std::array::from_fn(|i| want >> i & 1 != 0),
-        )))
+        s.mask(self.occluded_lanes(s, (floor.object, li), (start, to_light), dist, want))
     }
 
     /// Per lane, where the ray from `origin` along `dir` meets plane object `k`
@@ -239,32 +231,31 @@ impl Packet<'_, '_> {
         // Lanes whose mirror ray meets none of the tile's mirror candidates see
         // the background (`closest_among` finds nothing): the planes' and the
         // others' box and hit tests over the lanes, as in `nearer_than`.
-        let (start_a, dir_a) = (store3::<S>(start), store3::<S>(&dir));
         let mut missed = 0u8;
         if let Some(list) = self.tiles.mirror_at(floor.object, x0, y) {
             let one = s.splat(1.0);
-            let inv = store3::<S>(&L3 {
+            let inv = L3 {
                 x: one / dir.x,
                 y: one / dir.y,
                 z: one / dir.z,
-            });
-            let far = [f32::INFINITY; LANES];
+            };
+            let far = s.splat(f32::INFINITY);
             let mut met = 0u8;
             for &k in list {
                 if matches!(self.p.scene.objects[k].shape, Shape::Plane { .. }) {
-                    let t = self.plane_hits(s, k, start, &dir);
-                    met |= S::bits(S::lt(t, s.splat(f32::INFINITY)));
+                    met |= S::bits(S::lt(self.plane_hits(s, k, start, &dir), far));
                     continue;
                 }
-                let inside = bits(&box8(&self.p.boxes[k], &start_a, &inv, &far));
+                let inside = S::bits(box8(s, &self.p.boxes[k], start, &inv, far));
                 if inside != 0 {
-                    met |= inside & bits(&blocks8(self.p.geom(k), &start_a, &dir_a, &far));
+                    met |= inside & S::bits(blocks8(s, self.p.geom(k), start, &dir, far));
                 }
             }
             missed = !met;
         }
+        let (start_a, dir_a) = (store3::<S>(start), store3::<S>(&dir));
         let bg = self.p.scene.background;
-        let lanes: [Vec3; LANES] = std::array::from_fn(|i| {
+        let each: [Vec3; LANES] = lanes(|i| {
             if on_floor >> i & 1 == 0 {
                 return bg;
             }
@@ -300,9 +291,9 @@ impl Packet<'_, '_> {
             c
         });
         L3 {
-            x: s.load(&f8(|i| lanes[i].x)),
-            y: s.load(&f8(|i| lanes[i].y)),
-            z: s.load(&f8(|i| lanes[i].z)),
+            x: s.load(&f8(|i| each[i].x)),
+            y: s.load(&f8(|i| each[i].y)),
+            z: s.load(&f8(|i| each[i].z)),
         }
     }
 }

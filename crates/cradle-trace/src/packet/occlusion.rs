@@ -1,280 +1,288 @@
-//! Shadow rays of a packet's floor lanes, all lanes at once: what
-//! `Prepared::occluded_by` answers for each lane's ray (the planes, the group
-//! box, then the objects the lane's footprint cell lists, each through its box),
-//! with every box, sphere and cylinder test run over the eight lanes. Each lane
-//! computes the scalar test's operations in the scalar order (`Aabb::hit`,
-//! `hit_sphere`, `Cylinder::hit`; glam's dot is `(x*x' + y*y') + z*z'`), and an
-//! "any hit" answer does not depend on the order the objects are tested in, so
-//! every lane's answer is the scalar one.
+//! What a packet's lanes meet on the way, all lanes at once in lane build `S`:
+//! the box, sphere and cylinder tests, the footprint lookups of shadow rays, the
+//! objects in front of the floor, and the floor lanes' shadow rays (what
+//! `Prepared::occluded_by` answers for each lane's ray: the planes, the group
+//! box, then the objects the lane's footprint cell lists, each through its box).
+//! Each lane computes the scalar test's operations in the scalar order
+//! (`Aabb::hit`, `hit_sphere`, `Cylinder::hit`, `Footprints::lookup`; glam's dot
+//! is `(x*x' + y*y') + z*z'`, its `min` and `max` are `a < b ? a : b` and
+//! `a > b ? a : b`), and an "any hit" answer does not depend on the order the
+//! objects are tested in, so every lane's answer is the scalar one. Answers are
+//! lane masks, or bits (bit `i` for lane `i`).
 
 #![expect(
     clippy::inline_always,
     reason = "the lane code is inlined into each entry point, so the AVX2 one compiles it for AVX2"
 )]
 
-use super::{F8, LANES, Packet, V8, f8, load3};
-use crate::geometry::{Aabb, T_MIN};
+use super::{L3, LANES, Packet, lanes, splat3};
+use crate::geometry::{Aabb, Cylinder, T_MIN};
 use crate::prepared::Geom;
-use crate::shadow::Lookup;
-use crate::simd::{Portable, Simd};
-use glam::Vec3;
+use crate::shadow::{GridView, Lookup};
+use crate::simd::Simd;
 
-pub(super) type B8 = [bool; LANES];
-
-/// `a.dot(b)` per lane, for lane vectors: `(a.x * b.x) + (a.y * b.y) + (a.z * b.z)`.
+/// `1 / v` per component (`Vec3::recip`).
 #[inline(always)]
-fn dot8(a: &V8, b: &V8) -> F8 {
-    f8(|i| (a.x[i] * b.x[i]) + (a.y[i] * b.y[i]) + (a.z[i] * b.z[i]))
-}
-
-/// `origin - c` per lane.
-#[inline(always)]
-fn sub8(o: &V8, c: Vec3) -> V8 {
-    V8 {
-        x: f8(|i| o.x[i] - c.x),
-        y: f8(|i| o.y[i] - c.y),
-        z: f8(|i| o.z[i] - c.z),
+fn recip<S: Simd>(s: S, v: &L3<S::F>) -> L3<S::F> {
+    let one = s.splat(1.0);
+    L3 {
+        x: one / v.x,
+        y: one / v.y,
+        z: one / v.z,
     }
 }
 
-/// A lane mask as booleans.
-#[cfg(target_arch = "x86_64")]
+/// The entry and exit of one slab of a box: `(lo - o) * inv`, `(hi - o) *
+/// inv`, the smaller and the larger. (A function, not a closure: a closure left
+/// as a call is not compiled for AVX2.)
 #[inline(always)]
-fn bits(m: u8) -> B8 {
-    std::array::from_fn(|i| m >> i & 1 != 0)
+fn slab<S: Simd>(s: S, (lo, hi): (f32, f32), o: S::F, inv: S::F) -> (S::F, S::F) {
+    let t1 = (s.splat(lo) - o) * inv;
+    let t2 = (s.splat(hi) - o) * inv;
+    (S::min(t1, t2), S::max(t1, t2))
 }
 
-/// `Aabb::hit` per lane: glam's vector `min`/`max` pick `a < b ? a : b` and
-/// `a > b ? a : b`, `max_element` is `max(x, max(y, z))`, then `f32::max(T_MIN)`
-/// and `f32::min(t_max)`.
+/// `Aabb::hit` per lane (origins `o`, inverse directions `inv`): glam's vector
+/// `min`/`max`, `max_element` is `max(x, max(y, z))`, then `f32::max(T_MIN)` and
+/// `f32::min(t_max)`, which pick the same as `a > b ? a : b` and `a < b ? a : b`
+/// here (`T_MIN` and `t_max` are never NaN).
 #[inline(always)]
-pub(super) fn box8(b: &Aabb, o: &V8, inv: &V8, t_max: &F8) -> B8 {
-    #[cfg(target_arch = "x86_64")]
-    if crate::simd::avx2() {
-        // SAFETY: the CPU has AVX2, checked just above.
-        #[expect(unsafe_code, reason = "the run-time dispatch to the AVX2 build")]
-        return bits(unsafe { super::avx::aabb(b, o, inv, t_max) });
+pub(super) fn box8<S: Simd>(s: S, b: &Aabb, o: &L3<S::F>, inv: &L3<S::F>, t_max: S::F) -> S::M {
+    let (lx, hx) = slab(s, (b.min.x, b.max.x), o.x, inv.x);
+    let (ly, hy) = slab(s, (b.min.y, b.max.y), o.y, inv.y);
+    let (lz, hz) = slab(s, (b.min.z, b.max.z), o.z, inv.z);
+    let near = S::max(S::max(lx, S::max(ly, lz)), s.splat(T_MIN));
+    let far = S::min(S::min(hx, S::min(hy, hz)), t_max);
+    S::le(near, far)
+}
+
+/// `hit_sphere`'s nearest hit below `t_max`, per lane: `oc`, `b = oc.dot(dir)`,
+/// `f = oc - dir * b`, `disc = r*r - |f|^2`, the first of `-b - s`, `-b + s`
+/// beyond `T_MIN`.
+#[inline(always)]
+fn sphere<S: Simd>(
+    s: S,
+    (centre, radius): (glam::Vec3, f32),
+    o: &L3<S::F>,
+    d: &L3<S::F>,
+    t_max: S::F,
+) -> S::M {
+    let oc = o.sub(&splat3(s, centre));
+    let b = oc.dot(d);
+    let f = oc.sub(&d.scale(b));
+    let disc = s.splat(radius * radius) - f.dot(&f);
+    let root = S::sqrt(disc);
+    let (t0, t1) = (-b - root, -b + root);
+    let t_min = s.splat(T_MIN);
+    let first = S::select(S::lt(t_min, t0), t0, t1);
+    !S::lt(disc, s.splat(0.0)) & S::lt(t_min, first) & S::lt(first, t_max)
+}
+
+/// `Cylinder::hit`'s nearest hit below `t_max`, per lane. "No hit yet" is
+/// +inf, which takes and drops the same roots as the scalar `None` (a root of
+/// +inf could never be below `t_max`).
+#[inline(always)]
+fn cylinder<S: Simd>(s: S, c: &Cylinder, o: &L3<S::F>, d: &L3<S::F>, t_max: S::F) -> S::M {
+    let (a, b, u, len, radius) = c.parts();
+    let k = |v: f32| s.splat(v);
+    let uu = splat3(s, u);
+    let ao = o.sub(&splat3(s, a));
+    let (du, ou) = (d.dot(&uu), ao.dot(&uu));
+    // dir - u * du, ao - u * ou: (u.x * du) is (du * u.x), the same product.
+    let dp = d.sub(&uu.scale(du));
+    let op = ao.sub(&uu.scale(ou));
+    let (qa, qb) = (dp.dot(&dp), op.dot(&dp));
+    let r2 = k(radius * radius);
+    let t_min = k(T_MIN);
+    let body = S::lt(k(1e-12), qa);
+    let f = op.sub(&dp.scale(qb / qa));
+    let disc = qa * (r2 - f.dot(&f));
+    let miss_all = body & S::lt(disc, k(0.0));
+    let root = S::sqrt(disc);
+    let mut best = k(f32::INFINITY);
+    for root in [-qb - root, -qb + root] {
+        let t = root / qa;
+        let along = ou + t * du;
+        let inside = S::le(k(0.0), along) & S::le(along, k(len));
+        let take = body & inside & S::lt(t_min, t) & S::lt(t, best);
+        best = S::select(take, t, best);
     }
-    let mn = |a: f32, b: f32| if a < b { a } else { b };
-    let mx = |a: f32, b: f32| if a > b { a } else { b };
-    let slab = |lo: f32, hi: f32, o: &F8, inv: &F8| {
-        let t1 = f8(|i| (lo - o[i]) * inv[i]);
-        let t2 = f8(|i| (hi - o[i]) * inv[i]);
-        (f8(|i| mn(t1[i], t2[i])), f8(|i| mx(t1[i], t2[i])))
-    };
-    let (lx, hx) = slab(b.min.x, b.max.x, &o.x, &inv.x);
-    let (ly, hy) = slab(b.min.y, b.max.y, &o.y, &inv.y);
-    let (lz, hz) = slab(b.min.z, b.max.z, &o.z, &inv.z);
-    let near = f8(|i| mx(lx[i], mx(ly[i], lz[i])).max(T_MIN));
-    let far = f8(|i| mn(hx[i], mn(hy[i], hz[i])).min(t_max[i]));
-    std::array::from_fn(|i| near[i] <= far[i])
+    // |du| > 1e-12
+    let caps = S::lt(k(1e-12), S::abs(du));
+    for (end, along) in [(a, 0.0), (b, len)] {
+        let t = (k(along) - ou) / du;
+        // ray.at(t) - end: (origin + dir * t) - end.
+        let p = o.add(&d.scale(t)).sub(&splat3(s, end));
+        let take = caps & S::le(p.dot(&p), r2) & S::lt(t_min, t) & S::lt(t, best);
+        best = S::select(take, t, best);
+    }
+    !miss_all & S::lt(best, t_max)
 }
 
 /// Per lane, whether object `g` meets the ray before `t_max` (its nearest hit
 /// beyond `T_MIN`, as `hit_sphere` or `Cylinder::hit` finds it, is below
 /// `t_max`); planes are tested elsewhere.
 #[inline(always)]
-pub(super) fn blocks8(g: &Geom, o: &V8, d: &V8, t_max: &F8) -> B8 {
-    #[cfg(target_arch = "x86_64")]
-    if crate::simd::avx2() {
-        // SAFETY: the CPU has AVX2, checked just above.
-        #[expect(unsafe_code, reason = "the run-time dispatch to the AVX2 build")]
-        return bits(match *g {
-            Geom::Sphere { centre, radius } => unsafe {
-                super::avx::sphere(centre, radius, o, d, t_max)
-            },
-            Geom::Cylinder(ref c) => unsafe { super::avx::cylinder(c, o, d, t_max) },
-            Geom::Plane { .. } => 0,
-        });
-    }
+pub(super) fn blocks8<S: Simd>(s: S, g: &Geom, o: &L3<S::F>, d: &L3<S::F>, t_max: S::F) -> S::M {
     match *g {
-        Geom::Sphere { centre, radius } => {
-            // hit_sphere: oc, b = oc.dot(dir), f = oc - dir * b, disc = r*r - |f|^2,
-            // the first of -b - s, -b + s beyond T_MIN.
-            let oc = sub8(o, centre);
-            let b = dot8(&oc, d);
-            let f = V8 {
-                x: f8(|i| oc.x[i] - d.x[i] * b[i]),
-                y: f8(|i| oc.y[i] - d.y[i] * b[i]),
-                z: f8(|i| oc.z[i] - d.z[i] * b[i]),
-            };
-            let ff = dot8(&f, &f);
-            std::array::from_fn(|i| {
-                let disc = radius * radius - ff[i];
-                if disc < 0.0 {
-                    return false;
-                }
-                let s = disc.sqrt();
-                let (t0, t1) = (-b[i] - s, -b[i] + s);
-                let t = if t0 > T_MIN {
-                    t0
-                } else if t1 > T_MIN {
-                    t1
-                } else {
-                    return false;
-                };
-                t < t_max[i]
-            })
-        }
-        Geom::Cylinder(c) => {
-            let (a, b, u, len, radius) = c.parts();
-            let ao = sub8(o, a);
-            let du = f8(|i| (d.x[i] * u.x) + (d.y[i] * u.y) + (d.z[i] * u.z));
-            let ou = f8(|i| (ao.x[i] * u.x) + (ao.y[i] * u.y) + (ao.z[i] * u.z));
-            let dp = V8 {
-                x: f8(|i| d.x[i] - u.x * du[i]),
-                y: f8(|i| d.y[i] - u.y * du[i]),
-                z: f8(|i| d.z[i] - u.z * du[i]),
-            };
-            let op = V8 {
-                x: f8(|i| ao.x[i] - u.x * ou[i]),
-                y: f8(|i| ao.y[i] - u.y * ou[i]),
-                z: f8(|i| ao.z[i] - u.z * ou[i]),
-            };
-            let qa = dot8(&dp, &dp);
-            let qb = dot8(&op, &dp);
-            std::array::from_fn(|i| {
-                let mut best: Option<f32> = None;
-                let nearer = |best: Option<f32>, t: f32| t > T_MIN && best.is_none_or(|bt| t < bt);
-                if qa[i] > 1e-12 {
-                    let k = qb[i] / qa[i];
-                    let f = Vec3::new(
-                        op.x[i] - dp.x[i] * k,
-                        op.y[i] - dp.y[i] * k,
-                        op.z[i] - dp.z[i] * k,
-                    );
-                    let disc = qa[i] * (radius * radius - f.length_squared());
-                    if disc < 0.0 {
-                        return false;
-                    }
-                    let s = disc.sqrt();
-                    for t in [(-qb[i] - s) / qa[i], (-qb[i] + s) / qa[i]] {
-                        let along = ou[i] + t * du[i];
-                        if (0.0..=len).contains(&along) && nearer(best, t) {
-                            best = Some(t);
-                        }
-                    }
-                }
-                if du[i].abs() > 1e-12 {
-                    let (oi, di) = (o.lane(i), d.lane(i));
-                    for (end, along) in [(a, 0.0), (b, len)] {
-                        let t = (along - ou[i]) / du[i];
-                        if nearer(best, t)
-                            && ((oi + di * t) - end).length_squared() <= radius * radius
-                        {
-                            best = Some(t);
-                        }
-                    }
-                }
-                best.is_some_and(|t| t < t_max[i])
-            })
-        }
-        Geom::Plane { .. } => [false; LANES],
+        Geom::Sphere { centre, radius } => sphere(s, (centre, radius), o, d, t_max),
+        Geom::Cylinder(ref c) => cylinder(s, c, o, d, t_max),
+        Geom::Plane { .. } => s.mask(0),
     }
 }
 
+/// `Footprints::lookup` of the lanes' shadow-ray starts `x`, with the same
+/// operations: the side of the plane, the projection from the light, the plane
+/// coordinates, the grid cell (truncation, as `as usize` of a value in `0..n`).
+#[inline(always)]
+pub(super) fn lookup<S: Simd>(s: S, g: &GridView, x: &L3<S::F>) -> [Lookup; LANES] {
+    let k = |v: f32| s.splat(v);
+    let n = splat3(s, g.normal);
+    // (start - origin).dot(normal) < 0: behind the plane.
+    let height = x.sub(&splat3(s, g.origin)).dot(&n);
+    let mut unlit = S::lt(height, k(0.0));
+    let p = match g.light {
+        Ok(l) => {
+            // down = (l - x).dot(normal); down <= 1e-6 * height: level with it.
+            let lv = splat3(s, l);
+            let down = lv.sub(x).dot(&n);
+            unlit = unlit | S::le(down, k(1e-6 * g.scale));
+            // l + (x - l) * (height / down)
+            lv.add(&x.sub(&lv).scale(k(g.scale) / down))
+        }
+        // x + d * (-(x - origin).dot(normal) / d.dot(normal))
+        Err(d) => x.add(&splat3(s, d).scale(-height / k(g.scale))),
+    };
+    // coords: (p - origin).dot(e1), .dot(e2); then (q - min) * inv_cell.
+    let q = p.sub(&splat3(s, g.origin));
+    let cx = (q.dot(&splat3(s, g.e1)) - k(g.min.x)) * k(g.inv_cell.x);
+    let cy = (q.dot(&splat3(s, g.e2)) - k(g.min.y)) * k(g.inv_cell.y);
+    let zero = k(0.0);
+    let inside =
+        S::le(zero, cx) & S::le(zero, cy) & S::lt(cx, k(g.n.0 as f32)) & S::lt(cy, k(g.n.1 as f32));
+    let (unlit, inside) = (S::bits(unlit), S::bits(inside));
+    let (ix, iy) = (S::trunc(cx), S::trunc(cy));
+    lanes(|i| {
+        if unlit >> i & 1 != 0 {
+            Lookup::Unlit
+        } else if !g.gridded || inside >> i & 1 == 0 {
+            Lookup::Always
+        } else {
+            // In the grid: 0 <= ix < n.0 and 0 <= iy < n.1.
+            Lookup::Cell(iy[i] as usize * g.n.0 + ix[i] as usize)
+        }
+    })
+}
+
+/// The lanes' shadow rays: from `start` along `dir` (`inv` its inverse) up to
+/// `dist`.
+struct Rays<'a, F> {
+    start: &'a L3<F>,
+    dir: &'a L3<F>,
+    inv: L3<F>,
+    dist: F,
+}
+
 impl Packet<'_, '_> {
-    /// Per lane, whether any of the objects `others` meets its primary ray
-    /// (from the eye along `d`) before `t`: `closest_among`'s box test with `t`
-    /// as the limit, then its hit test.
+    /// Per lane (bits), whether any of the objects `others` meets its primary
+    /// ray (from the eye along `d`) before `t`: `closest_among`'s box test with
+    /// `t` as the limit, then its hit test.
     #[inline(always)]
-    pub(super) fn nearer_than(&self, others: &[usize], d: &V8, t: &F8) -> B8 {
-        let o = self.cam.origin;
-        let eye = V8 {
-            x: [o.x; LANES],
-            y: [o.y; LANES],
-            z: [o.z; LANES],
-        };
-        let inv = V8 {
-            x: f8(|i| 1.0 / d.x[i]),
-            y: f8(|i| 1.0 / d.y[i]),
-            z: f8(|i| 1.0 / d.z[i]),
-        };
-        let mut front = [false; LANES];
+    pub(super) fn nearer_than<S: Simd>(&self, s: S, others: &[usize], d: &L3<S::F>, t: S::F) -> u8 {
+        let eye = splat3(s, self.cam.origin);
+        let inv = recip(s, d);
+        let mut front = 0;
         for &k in others {
-            let inside = box8(&self.p.boxes[k], &eye, &inv, t);
-            if inside.contains(&true) {
-                let hit = blocks8(self.p.geom(k), &eye, d, t);
-                for i in 0..LANES {
-                    front[i] |= inside[i] && hit[i];
-                }
+            let inside = S::bits(box8(s, &self.p.boxes[k], &eye, &inv, t));
+            if inside != 0 {
+                front |= inside & S::bits(blocks8(s, self.p.geom(k), &eye, d, t));
             }
         }
         front
     }
 
-    /// Per lane, `Prepared::occluded_by(ray, dist, footprints)` for the shadow
-    /// rays from `start` along `dir` towards light `li` of floor object `plane`,
-    /// for the lanes in `want` (the others answer false).
+    /// The lanes of `live` (bits) whose rays object `k` meets before `dist`.
+    /// (A method, not a closure: a closure left as a call is not compiled for
+    /// AVX2.)
     #[inline(always)]
-    pub(super) fn occluded_lanes(
+    fn blocks<S: Simd>(&self, s: S, k: usize, r: &Rays<'_, S::F>, live: u8) -> u8 {
+        let Rays {
+            start,
+            dir,
+            ref inv,
+            dist,
+        } = *r;
+        if live == 0 {
+            return 0;
+        }
+        let inside = live & S::bits(box8(s, &self.p.boxes[k], start, inv, dist));
+        if inside == 0 {
+            return 0;
+        }
+        inside & S::bits(blocks8(s, self.p.geom(k), start, dir, dist))
+    }
+
+    /// Per lane (bits), `Prepared::occluded_by(ray, dist, footprints)` for the
+    /// shadow rays from `start` along `dir` towards light `li` of floor object
+    /// `plane`, for the lanes in `want` (the others answer false).
+    #[inline(always)]
+    pub(super) fn occluded_lanes<S: Simd>(
         &self,
+        s: S,
         (plane, li): (usize, usize),
-        start: &V8,
-        dir: &V8,
-        dist: &F8,
-        want: B8,
-    ) -> B8 {
+        (start, dir): (&L3<S::F>, &L3<S::F>),
+        dist: S::F,
+        want: u8,
+    ) -> u8 {
         let p = self.p;
-        let mut out = [false; LANES];
+        let mut out = 0;
         // The planes first: a hit before dist on any of them.
         for &k in p.planes() {
-            let t = Portable::store(self.plane_hits(
-                Portable,
-                k,
-                &load3(Portable, start),
-                &load3(Portable, dir),
-            ));
-            for i in 0..LANES {
-                out[i] |= want[i] && t[i] < dist[i];
-            }
+            out |= want & S::bits(S::lt(self.plane_hits(s, k, start, dir), dist));
         }
         // inv = dir.recip(); the group box.
-        let inv = V8 {
-            x: f8(|i| 1.0 / dir.x[i]),
-            y: f8(|i| 1.0 / dir.y[i]),
-            z: f8(|i| 1.0 / dir.z[i]),
-        };
-        let group = box8(&p.group, start, &inv, dist);
-        let mut todo: B8 = std::array::from_fn(|i| want[i] && !out[i] && group[i]);
+        let inv = recip(s, dir);
+        let mut todo = want & !out & S::bits(box8(s, &p.group, start, &inv, dist));
+        if todo == 0 {
+            return out;
+        }
         let fp = p.footprints(plane, li);
         // Lane by lane, where its footprint cell is (or no grid: every object);
         // lanes with the same lists are tested together.
         let at: [Lookup; LANES] = match fp {
             None => [Lookup::Unlit; LANES],
-            #[cfg(target_arch = "x86_64")]
-            Some(f) if crate::simd::avx2() => {
-                // SAFETY: the CPU has AVX2, checked just above.
-                #[expect(unsafe_code, reason = "the run-time dispatch to the AVX2 build")]
-                unsafe {
-                    super::avx::lookup(&f.view(), start)
-                }
-            }
-            Some(f) => std::array::from_fn(|i| f.lookup(start.lane(i))),
+            Some(f) => lookup(s, &f.view(), start),
         };
-        while let Some(first) = (0..LANES).find(|&i| todo[i]) {
-            let group: B8 = std::array::from_fn(|i| todo[i] && at[i] == at[first]);
-            let mut test = |k: usize| {
-                let live: B8 = std::array::from_fn(|i| group[i] && !out[i]);
-                if !live.contains(&true) {
-                    return;
+        let rays = Rays {
+            start,
+            dir,
+            inv,
+            dist,
+        };
+        while todo != 0 {
+            let first = at[todo.trailing_zeros() as usize];
+            let mut group = 0;
+            for (i, a) in at.iter().enumerate() {
+                if *a == first {
+                    group |= 1 << i;
                 }
-                let inside = box8(&p.boxes[k], start, &inv, dist);
-                if !(0..LANES).any(|i| live[i] && inside[i]) {
-                    return;
-                }
-                let hit = blocks8(p.geom(k), start, dir, dist);
-                for i in 0..LANES {
-                    out[i] |= live[i] && inside[i] && hit[i];
-                }
-            };
-            match fp.and_then(|f| f.list(at[first])) {
-                Some((cell, always)) => cell.iter().chain(always).for_each(|&k| test(k)),
-                None => p.bounded.iter().for_each(|&(k, _)| test(k)),
             }
-            for i in 0..LANES {
-                todo[i] &= !group[i];
+            group &= todo;
+            match fp.and_then(|f| f.list(first)) {
+                Some((cell, always)) => {
+                    for list in [cell, always] {
+                        for &k in list {
+                            out |= self.blocks(s, k, &rays, group & !out);
+                        }
+                    }
+                }
+                None => {
+                    for &(k, _) in &p.bounded {
+                        out |= self.blocks(s, k, &rays, group & !out);
+                    }
+                }
             }
+            todo &= !group;
         }
         out
     }

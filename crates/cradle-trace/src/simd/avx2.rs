@@ -18,9 +18,10 @@ use super::Simd;
 use std::arch::x86_64::{
     __m256, _CMP_LE_OQ, _CMP_LT_OQ, _mm256_add_ps, _mm256_and_ps, _mm256_and_si256,
     _mm256_andnot_ps, _mm256_blendv_ps, _mm256_castsi256_ps, _mm256_cmp_ps, _mm256_cmpeq_epi32,
-    _mm256_div_ps, _mm256_floor_ps, _mm256_loadu_ps, _mm256_movemask_ps, _mm256_mul_ps,
-    _mm256_or_ps, _mm256_set1_epi32, _mm256_set1_ps, _mm256_setr_epi32, _mm256_sqrt_ps,
-    _mm256_storeu_ps, _mm256_sub_ps, _mm256_xor_ps,
+    _mm256_cvttps_epi32, _mm256_div_ps, _mm256_floor_ps, _mm256_loadu_ps, _mm256_max_ps,
+    _mm256_min_ps, _mm256_movemask_ps, _mm256_mul_ps, _mm256_or_ps, _mm256_set1_epi32,
+    _mm256_set1_ps, _mm256_setr_epi32, _mm256_sqrt_ps, _mm256_storeu_ps, _mm256_storeu_si256,
+    _mm256_sub_ps, _mm256_xor_ps,
 };
 use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
 
@@ -125,6 +126,23 @@ impl Simd for Avx2 {
     fn abs(v: A8) -> A8 {
         // SAFETY: the value proves AVX2.
         A8(unsafe { _mm256_andnot_ps(_mm256_set1_ps(-0.0), v.0) })
+    }
+    #[inline(always)]
+    fn min(a: A8, b: A8) -> A8 {
+        // SAFETY: the values prove AVX2. `vminps` is `a < b ? a : b`.
+        A8(unsafe { _mm256_min_ps(a.0, b.0) })
+    }
+    #[inline(always)]
+    fn max(a: A8, b: A8) -> A8 {
+        // SAFETY: the values prove AVX2. `vmaxps` is `a > b ? a : b`.
+        A8(unsafe { _mm256_max_ps(a.0, b.0) })
+    }
+    #[inline(always)]
+    fn trunc(v: A8) -> [i32; 8] {
+        let mut out = [0; 8];
+        // SAFETY: the value proves AVX2; the store writes exactly the eight i32 of `out`.
+        unsafe { _mm256_storeu_si256(out.as_mut_ptr().cast(), _mm256_cvttps_epi32(v.0)) };
+        out
     }
     #[inline(always)]
     fn floor_small(v: A8) -> A8 {

@@ -131,6 +131,22 @@ impl Simd for Portable {
         map(v, f32::abs)
     }
     #[inline(always)]
+    fn min(a: P8, b: P8) -> P8 {
+        zip(a, b, |a, b| if a < b { a } else { b })
+    }
+    #[inline(always)]
+    fn max(a: P8, b: P8) -> P8 {
+        zip(a, b, |a, b| if a > b { a } else { b })
+    }
+    #[inline(always)]
+    fn trunc(v: P8) -> [i32; 8] {
+        let mut out = [0; 8];
+        for (o, v) in out.iter_mut().zip(v.0) {
+            *o = v as i32;
+        }
+        out
+    }
+    #[inline(always)]
     fn floor_small(v: P8) -> P8 {
         // Exact below 2^22, where every value converts to i64 and back exactly
         // (no libm call: the portable build has no rounding instruction).
