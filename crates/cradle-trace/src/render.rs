@@ -171,7 +171,7 @@ impl<'a> Frame<'a> {
     }
 
     /// Traces a whole row with `offsets`; returns each pixel's motion cells and
-    /// segments (segments only in a tracked frame). Centre samples go in packets
+    /// segments in a tracked frame (else an empty record). Centre samples go in packets
     /// where the tile allows. With `lin`, each pixel's linear colour goes there.
     pub(crate) fn row_with(
         &self,
@@ -199,15 +199,17 @@ impl<'a> Frame<'a> {
                 for i in x..x + lanes {
                     rm.begin(track);
                     if done & (1 << (i - x)) != 0 {
-                        rm.cells[i as usize] = marks[(i - x) as usize];
                         if track {
+                            rm.cells[i as usize] = marks[(i - x) as usize];
                             pk.lane_segs((i - x) as usize, &mut rm.segs);
                         }
                         continue;
                     }
                     let px = &mut out[i as usize * 4..i as usize * 4 + 4];
                     let (cells, c) = self.put((i, y), px, (None, offsets), &mut rm.segs);
-                    rm.cells[i as usize] = cells;
+                    if track {
+                        rm.cells[i as usize] = cells;
+                    }
                     if let Some(l) = lin.as_deref_mut() {
                         l[i as usize] = c;
                     }
@@ -218,7 +220,9 @@ impl<'a> Frame<'a> {
             rm.begin(track);
             let px = &mut out[x as usize * 4..x as usize * 4 + 4];
             let (cells, c) = self.put((x, y), px, (None, offsets), &mut rm.segs);
-            rm.cells[x as usize] = cells;
+            if track {
+                rm.cells[x as usize] = cells;
+            }
             if let Some(l) = lin.as_deref_mut() {
                 l[x as usize] = c;
             }

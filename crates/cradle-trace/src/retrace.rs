@@ -35,15 +35,15 @@ const BLOCK: usize = 8;
 const _: () = assert!(BLOCK == LANES);
 
 impl RowMotion {
-    /// A record of `width` pixels to fill; `track`: with segments.
+    /// A record of `width` pixels to fill; `track`: with cells and segments.
+    /// Without, it stays empty: a frame that tracks no motion has no cells.
     pub(crate) fn new(width: usize, track: bool) -> Self {
+        if !track {
+            return Self::default();
+        }
         Self {
             cells: vec![0; width],
-            span: if track {
-                Vec::with_capacity(width)
-            } else {
-                Vec::new()
-            },
+            span: Vec::with_capacity(width),
             ..Self::default()
         }
     }
