@@ -51,6 +51,52 @@ pub fn floor_i64(v: f32) -> i64 {
     }
 }
 
+/// `x` to the power `n` (at least 1) by repeated squaring, lowest bits first:
+/// the same multiplications in the same order for a float and for lanes of
+/// floats. (Plain loops, no closure: inlined into the AVX2 build of the lanes.)
+#[expect(
+    clippy::inline_always,
+    reason = "inlined into the lanes' AVX2 build, which a call would leave"
+)]
+#[inline(always)]
+pub(crate) fn powi<T: Copy + std::ops::Mul<Output = T>>(x: T, n: u32) -> T {
+    let mut base = x;
+    for _ in 0..n.trailing_zeros() {
+        base = base * base;
+    }
+    let mut out = base;
+    let mut rest = n.checked_shr(n.trailing_zeros() + 1).unwrap_or(0);
+    while rest != 0 {
+        base = base * base;
+        if rest & 1 != 0 {
+            out = out * base;
+        }
+        rest >>= 1;
+    }
+    out
+}
+
+/// A whole-number Phong exponent (1..=10000, as every asset's is), for
+/// [`powi`]; `None` for the others, which take `powf`.
+#[inline]
+#[must_use]
+pub(crate) fn whole(exponent: f32) -> Option<u32> {
+    // A conversion and back, not `fract` (a libm call in the portable build).
+    let n = exponent as u32;
+    ((1..=10_000).contains(&n) && n as f32 == exponent).then_some(n)
+}
+
+/// The Phong highlight `facing^exponent`: by [`powi`] for a whole-number
+/// exponent (vectorizable, the same bits in lanes), else `powf`.
+#[inline]
+#[must_use]
+pub(crate) fn highlight(facing: f32, exponent: f32) -> f32 {
+    match whole(exponent) {
+        Some(n) => powi(facing, n),
+        None => facing.powf(exponent),
+    }
+}
+
 /// The surface colour at `point`: plain, or a checker on the x-z grid.
 pub(crate) fn base_color(m: &Material, point: Vec3) -> Vec3 {
     match m.checker {
@@ -154,7 +200,7 @@ fn shade(
             let mirrored = 2.0 * lambert * n - to_light;
             let facing = mirrored.dot(-ray.dir);
             if facing > 0.0 {
-                color += light_color * facing.powf(exponent);
+                color += light_color * highlight(facing, exponent);
             }
         }
     }

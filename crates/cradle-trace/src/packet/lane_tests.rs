@@ -265,3 +265,48 @@ fn checker_lanes_pick_the_scalar_colours() {
         }
     }
 }
+
+/// `x^n` by `powi` over lanes of build `s`.
+fn powi_lanes<S: Simd>(s: S, x: &F8, n: u32) -> F8 {
+    S::store(crate::shade::powi(s.load(x), n))
+}
+
+#[test]
+fn whole_exponents_are_powers_by_squaring_in_every_build() {
+    use crate::shade::{highlight, powi, whole};
+    assert_eq!(
+        [0.0, 0.5, 1.0, 120.0, 120.5, 10_000.0, 10_001.0, f32::NAN].map(whole),
+        [
+            None,
+            None,
+            Some(1),
+            Some(120),
+            None,
+            Some(10_000),
+            None,
+            None
+        ]
+    );
+    let mut rng = Lcg(17);
+    for n in [1, 2, 3, 7, 20, 40, 120, 1000, 4097, 10_000] {
+        for _ in 0..50 {
+            let x: F8 = std::array::from_fn(|_| rng.f().abs());
+            for got in each_build!(|s| powi_lanes(s, &x, n)) {
+                for (g, &x) in got.iter().zip(&x) {
+                    // Lanes: the scalar bits.
+                    assert_eq!(g.to_bits(), powi(x, n).to_bits(), "{x}^{n}");
+                    // Against f64: each squaring at most doubles the relative
+                    // error and adds one rounding, so below n roundings of
+                    // 2^-24 (plus the smallest normal, for underflow).
+                    let want = f64::from(x).powi(n as i32);
+                    let tol = f64::from(n) * 2f64.powi(-24) * want + 1.2e-38;
+                    assert!(
+                        (f64::from(*g) - want).abs() <= tol,
+                        "{x}^{n}: {g} vs {want}"
+                    );
+                }
+            }
+        }
+    }
+    assert_eq!(highlight(0.5, 2.5), 0.5f32.powf(2.5));
+}

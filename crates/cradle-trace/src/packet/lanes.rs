@@ -14,7 +14,7 @@ use super::{F8, Floor, L3, LANES, Packet, Surface, V8, f8, lanes, splat3, store3
 use crate::geometry::{Ray, T_MIN};
 use crate::motion::Motion;
 use crate::scene::{Light, Shape};
-use crate::shade::{BAILOUT, base_color, reflect};
+use crate::shade::{BAILOUT, base_color, powi, reflect, whole};
 use crate::simd::Simd;
 use crate::tiles::Tiles;
 use glam::Vec3;
@@ -95,15 +95,19 @@ impl Packet<'_, '_> {
                 let shiny = lit & S::lt(k(0.0), facing);
                 let on = S::bits(shiny);
                 if on != 0 {
-                    // color += light_color * facing.powf(exponent)
-                    let f = S::store(facing);
-                    let pk = s.load(&f8(|i| {
-                        if on >> i & 1 != 0 {
-                            f[i].powf(exponent)
-                        } else {
-                            0.0
-                        }
-                    }));
+                    // color += light_color * highlight(facing, exponent)
+                    let pk = if let Some(n) = whole(exponent) {
+                        powi(facing, n)
+                    } else {
+                        let f = S::store(facing);
+                        s.load(&f8(|i| {
+                            if on >> i & 1 != 0 {
+                                f[i].powf(exponent)
+                            } else {
+                                0.0
+                            }
+                        }))
+                    };
                     let add = |c: S::F, l: f32| S::select(shiny, c + k(l) * pk, c);
                     color = L3 {
                         x: add(color.x, lc.x),
