@@ -257,6 +257,10 @@ impl Packet<'_, '_> {
             }
             missed = !met;
         }
+        if on_floor & !missed == 0 && self.motion.is_none() {
+            // Every lane sees the background, and there is nothing to note.
+            return splat3(s, self.p.scene.background);
+        }
         let (start_a, dir_a) = (store3::<S>(start), store3::<S>(&dir));
         let bg = self.p.scene.background;
         let each: [Vec3; LANES] = lanes(|i| {
@@ -269,7 +273,9 @@ impl Packet<'_, '_> {
             };
             if missed >> i & 1 != 0 {
                 // `reflect` would find nothing and note the ray to infinity.
-                self.note(i, &mirror, f32::INFINITY);
+                if self.motion.is_some() {
+                    self.note(i, &mirror, f32::INFINITY);
+                }
                 return bg;
             }
             let mut motion = Motion::with(self.motion, self.scratch.take());
