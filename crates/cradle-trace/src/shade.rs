@@ -148,7 +148,7 @@ pub fn trace_primary(
     clippy::too_many_arguments,
     reason = "the recursion's state, passed down"
 )]
-fn shade(
+pub(crate) fn shade(
     p: &Prepared<'_>,
     ray: &Ray,
     hit: Option<Hit>,

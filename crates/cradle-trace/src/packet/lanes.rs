@@ -9,12 +9,13 @@
     reason = "the lane code is inlined into each entry point, so the AVX2 one compiles it for AVX2"
 )]
 
-use super::occlusion::{blocks8, box8};
+use super::occlusion::{box8, hit8};
 use super::{F8, Floor, L3, LANES, Packet, Surface, V8, f8, lanes, splat3, store3};
 use crate::geometry::{Ray, T_MIN};
 use crate::motion::Motion;
+use crate::prepared::Hit;
 use crate::scene::{Light, Shape};
-use crate::shade::{BAILOUT, base_color, powi, reflect, whole};
+use crate::shade::{BAILOUT, base_color, powi, reflect, shade, whole};
 use crate::simd::Simd;
 use crate::tiles::Tiles;
 use glam::Vec3;
@@ -232,30 +233,38 @@ impl Packet<'_, '_> {
     ) -> L3<S::F> {
         // dir - 2.0 * dir.dot(n) * n
         let dir = d.sub(&nn.scale(s.splat(2.0) * d.dot(nn)));
-        // Lanes whose mirror ray meets none of the tile's mirror candidates see
-        // the background (`closest_among` finds nothing): the planes' and the
-        // others' box and hit tests over the lanes, as in `nearer_than`.
+        // The nearest of the tile's mirror candidates per lane, as
+        // `closest_among` finds it: the candidates in order, each box tested
+        // with the nearest hit so far as its limit, a hit taken only where
+        // nearer (so the first of equally near ones). Lanes that meet none see
+        // the background.
         let mut missed = 0u8;
+        let mut nearest = None;
         if let Some(list) = self.tiles.mirror_at(floor.object, x0, y) {
+            let inf = s.splat(f32::INFINITY);
             let one = s.splat(1.0);
             let inv = L3 {
                 x: one / dir.x,
                 y: one / dir.y,
                 z: one / dir.z,
             };
-            let far = s.splat(f32::INFINITY);
-            let mut met = 0u8;
+            let (mut best, mut which) = (inf, s.splat(0.0));
             for &k in list {
-                if matches!(self.p.scene.objects[k].shape, Shape::Plane { .. }) {
-                    met |= S::bits(S::lt(self.plane_hits(s, k, start, &dir), far));
-                    continue;
-                }
-                let inside = S::bits(box8(s, &self.p.boxes[k], start, &inv, far));
-                if inside != 0 {
-                    met |= inside & S::bits(blocks8(s, self.p.geom(k), start, &dir, far));
-                }
+                let t = if matches!(self.p.scene.objects[k].shape, Shape::Plane { .. }) {
+                    self.plane_hits(s, k, start, &dir)
+                } else {
+                    let inside = box8(s, &self.p.boxes[k], start, &inv, best);
+                    if S::bits(inside) & on_floor == 0 {
+                        continue;
+                    }
+                    S::select(inside, hit8(s, self.p.geom(k), start, &dir), inf)
+                };
+                let take = S::lt(t, best);
+                best = S::select(take, t, best);
+                which = S::select(take, s.splat(k as f32), which);
             }
-            missed = !met;
+            missed = !S::bits(S::lt(best, inf));
+            nearest = Some(S::store(which));
         }
         if on_floor & !missed == 0 && self.motion.is_none() {
             // Every lane sees the background, and there is nothing to note.
@@ -279,16 +288,17 @@ impl Packet<'_, '_> {
                 return bg;
             }
             let mut motion = Motion::with(self.motion, self.scratch.take());
-            let c = reflect(
-                self.p,
-                &mirror,
-                floor.object,
-                1,
-                r,
-                self.bound,
-                &mut motion,
-                tile,
-            );
+            let c = if let Some(which) = nearest {
+                // `reflect` through the tile's list: the object found above,
+                // met by the scalar test for its normal (the same `t`).
+                let k = which[i] as usize;
+                let hit =
+                    (self.p.hit_object(k, &mirror)).map(|(t, n)| Hit::facing(&mirror, t, k, n));
+                shade(self.p, &mirror, hit, 1, r, self.bound, &mut motion, None)
+            } else {
+                let (p, b) = (self.p, self.bound);
+                reflect(p, &mirror, floor.object, 1, r, b, &mut motion, tile)
+            };
             if self.motion.is_some() {
                 let mut m = self.marks.get();
                 m[i] |= motion.mask;

@@ -56,17 +56,11 @@ pub(super) fn box8<S: Simd>(s: S, b: &Aabb, o: &L3<S::F>, inv: &L3<S::F>, t_max:
     S::le(near, far)
 }
 
-/// `hit_sphere`'s nearest hit below `t_max`, per lane: `oc`, `b = oc.dot(dir)`,
-/// `f = oc - dir * b`, `disc = r*r - |f|^2`, the first of `-b - s`, `-b + s`
-/// beyond `T_MIN`.
+/// `hit_sphere`'s nearest hit per lane (+inf for none): `oc`, `b =
+/// oc.dot(dir)`, `f = oc - dir * b`, `disc = r*r - |f|^2`, the first of `-b -
+/// s`, `-b + s` beyond `T_MIN`.
 #[inline(always)]
-fn sphere<S: Simd>(
-    s: S,
-    (centre, radius): (glam::Vec3, f32),
-    o: &L3<S::F>,
-    d: &L3<S::F>,
-    t_max: S::F,
-) -> S::M {
+fn sphere<S: Simd>(s: S, (centre, radius): (glam::Vec3, f32), o: &L3<S::F>, d: &L3<S::F>) -> S::F {
     let oc = o.sub(&splat3(s, centre));
     let b = oc.dot(d);
     let f = oc.sub(&d.scale(b));
@@ -75,14 +69,15 @@ fn sphere<S: Simd>(
     let (t0, t1) = (-b - root, -b + root);
     let t_min = s.splat(T_MIN);
     let first = S::select(S::lt(t_min, t0), t0, t1);
-    !S::lt(disc, s.splat(0.0)) & S::lt(t_min, first) & S::lt(first, t_max)
+    let hit = !S::lt(disc, s.splat(0.0)) & S::lt(t_min, first);
+    S::select(hit, first, s.splat(f32::INFINITY))
 }
 
-/// `Cylinder::hit`'s nearest hit below `t_max`, per lane. "No hit yet" is
+/// `Cylinder::hit`'s nearest hit per lane (+inf for none). "No hit yet" is
 /// +inf, which takes and drops the same roots as the scalar `None` (a root of
-/// +inf could never be below `t_max`).
+/// +inf could never be nearer than another).
 #[inline(always)]
-fn cylinder<S: Simd>(s: S, c: &Cylinder, o: &L3<S::F>, d: &L3<S::F>, t_max: S::F) -> S::M {
+fn cylinder<S: Simd>(s: S, c: &Cylinder, o: &L3<S::F>, d: &L3<S::F>) -> S::F {
     let (a, b, u, len, radius) = c.parts();
     let k = |v: f32| s.splat(v);
     let uu = splat3(s, u);
@@ -116,19 +111,25 @@ fn cylinder<S: Simd>(s: S, c: &Cylinder, o: &L3<S::F>, d: &L3<S::F>, t_max: S::F
         let take = caps & S::le(p.dot(&p), r2) & S::lt(t_min, t) & S::lt(t, best);
         best = S::select(take, t, best);
     }
-    !miss_all & S::lt(best, t_max)
+    S::select(miss_all, k(f32::INFINITY), best)
 }
 
-/// Per lane, whether object `g` meets the ray before `t_max` (its nearest hit
-/// beyond `T_MIN`, as `hit_sphere` or `Cylinder::hit` finds it, is below
-/// `t_max`); planes are tested elsewhere.
+/// Per lane, where bounded object `g` first meets the ray beyond `T_MIN` (the
+/// `t` of `hit_sphere` or `Cylinder::hit`), or +inf; planes are tested
+/// elsewhere (+inf here).
+#[inline(always)]
+pub(super) fn hit8<S: Simd>(s: S, g: &Geom, o: &L3<S::F>, d: &L3<S::F>) -> S::F {
+    match *g {
+        Geom::Sphere { centre, radius } => sphere(s, (centre, radius), o, d),
+        Geom::Cylinder(ref c) => cylinder(s, c, o, d),
+        Geom::Plane { .. } => s.splat(f32::INFINITY),
+    }
+}
+
+/// Per lane, whether bounded object `g` meets the ray before `t_max`.
 #[inline(always)]
 pub(super) fn blocks8<S: Simd>(s: S, g: &Geom, o: &L3<S::F>, d: &L3<S::F>, t_max: S::F) -> S::M {
-    match *g {
-        Geom::Sphere { centre, radius } => sphere(s, (centre, radius), o, d, t_max),
-        Geom::Cylinder(ref c) => cylinder(s, c, o, d, t_max),
-        Geom::Plane { .. } => s.mask(0),
-    }
+    S::lt(hit8(s, g, o, d), t_max)
 }
 
 /// `Footprints::lookup` of the lanes' shadow-ray starts `x`, with the same
