@@ -22,7 +22,7 @@
 )]
 
 use super::camera::CameraRays;
-use super::color::srgb8_lanes;
+use super::color::rgba8_lanes;
 use super::geometry::{Ray, T_MIN};
 use super::motion::{Cells, MotionGrid, Seg};
 use super::prepared::Prepared;
@@ -205,10 +205,9 @@ impl Packet<'_, '_> {
             #[expect(unsafe_code, reason = "the one run-time dispatch to the AVX2 build")]
             return unsafe { self.floor_avx2(s, floor, others, (x0, y), out) };
         }
-        let (done, color) = self.floor_lanes(Portable, floor, others, x0, y);
+        let (done, c) = self.floor_lanes(Portable, floor, others, x0, y);
         if done != 0 {
-            let srgb = |c: &F8| srgb8_lanes(*c);
-            write(out, done, [srgb(&color.x), srgb(&color.y), srgb(&color.z)]);
+            write(out, done, rgba8_lanes(c.x, c.y, c.z));
         }
         done
     }
@@ -225,10 +224,9 @@ impl Packet<'_, '_> {
         (x0, y): (u32, u32),
         out: &mut [u8],
     ) -> u8 {
-        let (done, color) = self.floor_lanes(s, floor, others, x0, y);
+        let (done, c) = self.floor_lanes(s, floor, others, x0, y);
         if done != 0 {
-            let srgb = |c: &F8| super::color::srgb8_avx2(*c);
-            write(out, done, [srgb(&color.x), srgb(&color.y), srgb(&color.z)]);
+            write(out, done, super::color::rgba8_avx2(&c.x, &c.y, &c.z));
         }
         done
     }
@@ -312,13 +310,18 @@ impl Packet<'_, '_> {
     }
 }
 
-/// Writes the lanes in `done` of `rgb` (sRGB bytes per channel) to `out`, 8
-/// RGBA pixels.
+/// Writes the pixels `px` of the lanes in `done` to `out`, 8 RGBA pixels.
 #[inline(always)]
-fn write(out: &mut [u8], done: u8, [r, g, b]: [[u8; LANES]; 3]) {
-    for (i, px) in out.chunks_exact_mut(4).enumerate() {
+fn write(out: &mut [u8], done: u8, px: [u32; LANES]) {
+    if done == 0xFF {
+        for (o, p) in out.chunks_exact_mut(4).zip(px) {
+            o.copy_from_slice(&p.to_le_bytes());
+        }
+        return;
+    }
+    for (i, (o, p)) in out.chunks_exact_mut(4).zip(px).enumerate() {
         if done >> i & 1 != 0 {
-            px.copy_from_slice(&[r[i], g[i], b[i], 255]);
+            o.copy_from_slice(&p.to_le_bytes());
         }
     }
 }
