@@ -148,14 +148,17 @@ mod tests {
         for chunk in v.chunks_exact(24) {
             let lane = |k: usize| -> [f32; 8] { std::array::from_fn(|i| chunk[k * 8 + i]) };
             let (r, g, b) = (lane(0), lane(1), lane(2));
-            let mut got = vec![rgba8_lanes(r, g, b)];
             #[cfg(target_arch = "x86_64")]
-            if std::arch::is_x86_feature_detected!("avx2") {
+            let avx = std::arch::is_x86_feature_detected!("avx2").then(|| {
                 // SAFETY: the CPU has AVX2, checked just above.
                 #[expect(unsafe_code, reason = "calling the AVX2 build under test")]
-                got.push(unsafe { super::rgba8_avx2(&r, &g, &b) });
-            }
-            for px in got {
+                unsafe {
+                    super::rgba8_avx2(&r, &g, &b)
+                }
+            });
+            #[cfg(not(target_arch = "x86_64"))]
+            let avx = None;
+            for px in std::iter::once(rgba8_lanes(r, g, b)).chain(avx) {
                 for i in 0..8 {
                     let want = [srgb8(r[i]), srgb8(g[i]), srgb8(b[i]), 255];
                     assert_eq!(px[i].to_le_bytes(), want, "{} {} {}", r[i], g[i], b[i]);

@@ -1,20 +1,21 @@
 //! Packets: eight adjacent pixels of a row traced together where the scene is
 //! coherent, structure of arrays, one lane per pixel.
 //!
-//! A packet is taken when the only candidate whose screen rectangle reaches its
-//! pixels is one plane (the open floor, most of the picture), and every lane's
-//! ray meets that plane: then the closest hit of each lane is that plane's. Each lane then computes exactly what the scalar path computes
+//! A packet is taken when the only plane among the candidates whose screen
+//! rectangles reach its pixels is the floor (most of the picture), and every
+//! lane's ray meets it; a lane that meets another candidate first is left to the
+//! scalar path. Each lane computes exactly what the scalar path computes
 //! (`CameraRays::ray`, `hit_plane`, `shade`): the same IEEE operations in the same
 //! order, with no fused multiply-add and no approximate reciprocal, so the bytes
 //! equal the scalar render's. The lines carry the scalar expression they mirror.
-//! Work that is not coherent (a shadow ray that may be blocked, a mirror ray with
-//! objects to meet) goes lane by lane through the scalar queries themselves.
+//! What the cradle's mirror image needs past its nearest hit goes lane by lane
+//! through the scalar `shade`.
 //!
-//! The floor's kernel (rays, hits, lights, checker, mirror rays) is written once
-//! over a lane build `S: Simd` (`crate::simd`): one AVX instruction per operation
-//! where the CPU has AVX2 (chosen at run time, in `Packet::floor`), plain loops
-//! over arrays elsewhere. The tests of objects met on the way (`occlusion`, `avx`)
-//! work on lane arrays. The shading of the lanes is in `lanes`.
+//! The kernel is written once over a lane build `S: Simd` (`crate::simd`): one
+//! AVX instruction per operation where the CPU has AVX2 (chosen at run time, in
+//! `Packet::floor`), plain loops over arrays elsewhere. Rays and hits are here,
+//! the shading in `lanes`, the objects met on the way in `occlusion`, the lane
+//! vectors in `vec`.
 
 #![expect(
     clippy::inline_always,

@@ -160,6 +160,10 @@ struct Chunk {
 #[derive(Debug, Clone, Default)]
 pub struct NearSet {
     nears: Vec<(Cells, Near)>,
+    #[cfg_attr(
+        not(target_arch = "x86_64"),
+        expect(dead_code, reason = "read by the AVX2 build only")
+    )]
     chunks: Vec<Chunk>,
 }
 

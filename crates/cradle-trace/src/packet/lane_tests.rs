@@ -70,12 +70,11 @@ fn four<S: Simd>(
 /// `f(build)` for the portable build and, where the CPU has it, the AVX2 one.
 macro_rules! each_build {
     ($f:expr) => {{
-        let mut out = vec![$f(Portable)];
         #[cfg(target_arch = "x86_64")]
-        if let Some(s) = crate::simd::Avx2::detect() {
-            out.push($f(s));
-        }
-        out
+        let avx = crate::simd::Avx2::detect().map(|s| $f(s));
+        #[cfg(not(target_arch = "x86_64"))]
+        let avx = None;
+        std::iter::once($f(Portable)).chain(avx).collect::<Vec<_>>()
     }};
 }
 
