@@ -14,18 +14,13 @@ pub fn force_portable(on: bool) {
     PORTABLE.store(on, Ordering::Relaxed);
 }
 
-/// Whether to run the AVX2 build (std caches the CPU's answer).
+/// Whether to run the AVX2 build (std caches the CPU's answer). Other
+/// architectures run the portable build only.
+#[cfg(target_arch = "x86_64")]
 #[inline]
 #[must_use]
 pub(crate) fn avx2() -> bool {
-    #[cfg(target_arch = "x86_64")]
-    {
-        !PORTABLE.load(Ordering::Relaxed) && std::arch::is_x86_feature_detected!("avx2")
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    {
-        false
-    }
+    !PORTABLE.load(Ordering::Relaxed) && std::arch::is_x86_feature_detected!("avx2")
 }
 
 /// The eight floats of `v` in an AVX register.

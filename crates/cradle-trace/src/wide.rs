@@ -16,6 +16,9 @@
 
 use super::geometry::{Aabb, Ray, T_MIN};
 use super::prepared::{Hit, Prepared};
+#[cfg(target_arch = "x86_64")]
+use super::simd::Avx2;
+use super::simd::{Portable, Simd};
 use glam::Vec3;
 use std::cell::Cell;
 
@@ -41,72 +44,38 @@ pub(crate) struct WideBoxes {
     chunks: Vec<Chunk>,
 }
 
-/// The lanes of one chunk the ray meets before `t_max`: bit `j` for lane `j`.
-/// Lane `j` is [`Aabb::hit`] of that box, operation for operation, NaN rules
-/// included: `t1 = (min - o) * inv`, `t2 = (max - o) * inv`; glam's `min` and
-/// `max` of vectors pick with `a < b ? a : b` and `a > b ? a : b` (the second
-/// operand when either is NaN), `max_element` is `max(x, max(y, z))`; the last
-/// `max(T_MIN)` and `min(t_max)` are `f32`'s, which skip a NaN.
+/// The lanes of one chunk the ray meets before `t_max`: bit `j` for lane `j`,
+/// in lane build `S`. Lane `j` is [`Aabb::hit`] of that box, operation for
+/// operation, NaN rules included: `t1 = (min - o) * inv`, `t2 = (max - o) *
+/// inv`; glam's `min` and `max` of vectors pick with `a < b ? a : b` and `a > b
+/// ? a : b` (the second operand when either is NaN), `max_element` is `max(x,
+/// max(y, z))`; the last `max(T_MIN)` and `min(t_max)` are `f32`'s, which pick
+/// the same here, as `T_MIN` and `t_max` are never NaN.
 #[inline(always)]
-fn lanes(c: &Chunk, o: Vec3, inv: Vec3, t_max: f32) -> u8 {
-    let (o, inv) = (o.to_array(), inv.to_array());
-    let mn = |a: f32, b: f32| if a < b { a } else { b };
-    let mx = |a: f32, b: f32| if a > b { a } else { b };
-    let mut bits = 0u8;
-    for j in 0..W {
-        let t1: [f32; 3] = std::array::from_fn(|a| (c.min[a][j] - o[a]) * inv[a]);
-        let t2: [f32; 3] = std::array::from_fn(|a| (c.max[a][j] - o[a]) * inv[a]);
-        let lo: [f32; 3] = std::array::from_fn(|a| mn(t1[a], t2[a]));
-        let hi: [f32; 3] = std::array::from_fn(|a| mx(t1[a], t2[a]));
-        let near = mx(lo[0], mx(lo[1], lo[2])).max(T_MIN);
-        let far = mn(hi[0], mn(hi[1], hi[2])).min(t_max);
-        bits |= u8::from(near <= far) << j;
-    }
-    bits & c.used
+fn lanes<S: Simd>(s: S, c: &Chunk, o: Vec3, inv: Vec3, t_max: f32) -> u8 {
+    let (lx, hx) = slab(s, c, 0, (o.x, inv.x));
+    let (ly, hy) = slab(s, c, 1, (o.y, inv.y));
+    let (lz, hz) = slab(s, c, 2, (o.z, inv.z));
+    let near = S::max(S::max(lx, S::max(ly, lz)), s.splat(T_MIN));
+    let far = S::min(S::min(hx, S::min(hy, hz)), s.splat(t_max));
+    S::bits(S::le(near, far)) & c.used
 }
 
-/// [`lanes`] in AVX registers, written with the instructions themselves (the
-/// compiler's own vectorization of the loop shuffles more than it computes).
-/// `minps(a, b)` is `a < b ? a : b` and `maxps(a, b)` is `a > b ? a : b`, the
-/// second operand for a NaN, as glam picks; `f32::max(x, T_MIN)` is
-/// `maxps(x, T_MIN)` since `T_MIN` is never NaN, and `min(t_max)` likewise.
+/// The entries and exits of the chunk's slabs along axis `a` (ray origin and
+/// inverse direction `o`, `inv` on it). (A function, not a closure: a closure
+/// left as a call is not compiled for AVX2.)
+#[inline(always)]
+fn slab<S: Simd>(s: S, c: &Chunk, a: usize, (o, inv): (f32, f32)) -> (S::F, S::F) {
+    let t1 = (s.load(&c.min[a]) - s.splat(o)) * s.splat(inv);
+    let t2 = (s.load(&c.max[a]) - s.splat(o)) * s.splat(inv);
+    (S::min(t1, t2), S::max(t1, t2))
+}
+
+/// [`lanes`] compiled for AVX2.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-fn lanes_avx2(c: &Chunk, o: Vec3, inv: Vec3, t_max: f32) -> u8 {
-    use std::arch::x86_64::{
-        _CMP_LE_OQ, _mm256_cmp_ps, _mm256_max_ps, _mm256_min_ps, _mm256_movemask_ps, _mm256_mul_ps,
-        _mm256_set1_ps, _mm256_sub_ps,
-    };
-    let (o, inv) = (o.to_array(), inv.to_array());
-    let t = |v: &[f32; W], a: usize| {
-        _mm256_mul_ps(
-            _mm256_sub_ps(super::simd::load8(v), _mm256_set1_ps(o[a])),
-            _mm256_set1_ps(inv[a]),
-        )
-    };
-    let (t1x, t2x) = (t(&c.min[0], 0), t(&c.max[0], 0));
-    let (t1y, t2y) = (t(&c.min[1], 1), t(&c.max[1], 1));
-    let (t1z, t2z) = (t(&c.min[2], 2), t(&c.max[2], 2));
-    let (lx, ly, lz) = (
-        _mm256_min_ps(t1x, t2x),
-        _mm256_min_ps(t1y, t2y),
-        _mm256_min_ps(t1z, t2z),
-    );
-    let (hx, hy, hz) = (
-        _mm256_max_ps(t1x, t2x),
-        _mm256_max_ps(t1y, t2y),
-        _mm256_max_ps(t1z, t2z),
-    );
-    let near = _mm256_max_ps(
-        _mm256_max_ps(lx, _mm256_max_ps(ly, lz)),
-        _mm256_set1_ps(T_MIN),
-    );
-    let far = _mm256_min_ps(
-        _mm256_min_ps(hx, _mm256_min_ps(hy, hz)),
-        _mm256_set1_ps(t_max),
-    );
-    let hit = _mm256_cmp_ps::<_CMP_LE_OQ>(near, far);
-    (_mm256_movemask_ps(hit) as u8) & c.used
+fn lanes_avx2(s: Avx2, c: &Chunk, o: Vec3, inv: Vec3, t_max: f32) -> u8 {
+    lanes(s, c, o, inv, t_max)
 }
 
 impl WideBoxes {
@@ -146,22 +115,19 @@ impl WideBoxes {
         limit: impl Fn() -> f32,
         mut visit: impl FnMut(usize, &Aabb, f32) -> bool,
     ) -> bool {
-        let wide = super::simd::avx2();
+        #[cfg(target_arch = "x86_64")]
+        let wide = Avx2::detect();
         for c in &self.chunks {
             let t_max = limit();
             #[cfg(target_arch = "x86_64")]
-            // SAFETY: the CPU has AVX2 when `wide` is set (checked at run time).
-            #[expect(unsafe_code, reason = "the run-time dispatch to the AVX2 build")]
-            let mut bits = if wide {
-                unsafe { lanes_avx2(c, ray.origin, inv, t_max) }
-            } else {
-                lanes(c, ray.origin, inv, t_max)
+            let mut bits = match wide {
+                // SAFETY: the token proves the CPU has AVX2.
+                #[expect(unsafe_code, reason = "the run-time dispatch to the AVX2 build")]
+                Some(s) => unsafe { lanes_avx2(s, c, ray.origin, inv, t_max) },
+                None => lanes(Portable, c, ray.origin, inv, t_max),
             };
             #[cfg(not(target_arch = "x86_64"))]
-            let mut bits = {
-                let _ = wide;
-                lanes(c, ray.origin, inv, t_max)
-            };
+            let mut bits = lanes(Portable, c, ray.origin, inv, t_max);
             while bits != 0 {
                 let j = bits.trailing_zeros() as usize;
                 bits &= bits - 1;
@@ -216,6 +182,7 @@ impl Prepared<'_> {
 mod tests {
     use super::{W, WideBoxes, lanes};
     use crate::geometry::{Aabb, Ray};
+    use crate::simd::Portable;
     use glam::Vec3;
 
     /// Both builds of the eight-box test against `Aabb::hit`, box by box.
@@ -227,12 +194,11 @@ mod tests {
                 let i = k * W + j;
                 bits | (u8::from(i < boxes.len() && boxes[i].hit(ray, inv, t_max)) << j)
             });
-            assert_eq!(lanes(c, ray.origin, inv, t_max), want, "portable, {ray:?}");
+            let got = lanes(Portable, c, ray.origin, inv, t_max);
+            assert_eq!(got, want, "portable, {ray:?}");
             #[cfg(target_arch = "x86_64")]
-            if std::arch::is_x86_feature_detected!("avx2") {
-                // SAFETY: the CPU has AVX2, checked just above.
-                #[expect(unsafe_code, reason = "calling the AVX2 build under test")]
-                let got = unsafe { super::lanes_avx2(c, ray.origin, inv, t_max) };
+            if let Some(s) = crate::simd::Avx2::detect() {
+                let got = lanes(s, c, ray.origin, inv, t_max);
                 assert_eq!(got, want, "AVX2, {ray:?}");
             }
         }
