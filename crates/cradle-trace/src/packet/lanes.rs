@@ -20,7 +20,8 @@ use crate::simd::Simd;
 use crate::tiles::Tiles;
 use glam::Vec3;
 
-/// Below this, every `f32` and the sum of two is an exact integer once floored.
+/// Below this in magnitude, floored values, the sum of two (below 2^23) and
+/// its parity are exact in `f32`.
 const SMALL: f32 = 4_194_304.0; // 2^22
 
 impl Packet<'_, '_> {
