@@ -9,7 +9,7 @@
     reason = "the lane code is inlined into each entry point, so the AVX2 one compiles it for AVX2"
 )]
 
-use super::occlusion::{box8, hit8};
+use super::occlusion::{box8, hit8, recip};
 use super::{F8, Floor, L3, LANES, Packet, Surface, V8, f8, lanes, splat3, store3};
 use crate::geometry::{Ray, T_MIN};
 use crate::motion::Motion;
@@ -243,12 +243,7 @@ impl Packet<'_, '_> {
         let mut nearest = None;
         if let Some(list) = self.tiles.mirror_at(floor.object, x0, y) {
             let inf = s.splat(f32::INFINITY);
-            let one = s.splat(1.0);
-            let inv = L3 {
-                x: one / dir.x,
-                y: one / dir.y,
-                z: one / dir.z,
-            };
+            let inv = recip(s, &dir);
             let (mut best, mut which) = (inf, s.splat(0.0));
             for &k in list {
                 let t = if matches!(self.p.scene.objects[k].shape, Shape::Plane { .. }) {

@@ -23,7 +23,7 @@ use crate::simd::Simd;
 
 /// `1 / v` per component (`Vec3::recip`).
 #[inline(always)]
-fn recip<S: Simd>(s: S, v: &L3<S::F>) -> L3<S::F> {
+pub(super) fn recip<S: Simd>(s: S, v: &L3<S::F>) -> L3<S::F> {
     let one = s.splat(1.0);
     L3 {
         x: one / v.x,
