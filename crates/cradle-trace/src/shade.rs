@@ -211,7 +211,7 @@ pub(crate) fn shade(
         let reflected = reflect(
             p,
             &mirror,
-            hit.object,
+            (hit.object, hit.outside),
             depth + 1,
             weight * r,
             bound,
@@ -241,9 +241,10 @@ pub(crate) fn blocked(
     }
 }
 
-/// The radiance the mirror ray `mirror` from `object` brings back, traced as a
-/// bounce at `depth` with path weight `weight`: a plane's mirror ray from a
-/// primary pixel (`tile`) tests only its tile's mirror candidates.
+/// The radiance the mirror ray `mirror` from `object` (met from outside or
+/// not) brings back, traced as a bounce at `depth` with path weight `weight`: a
+/// plane's mirror ray from a primary pixel (`tile`) tests only its tile's
+/// mirror candidates.
 #[expect(
     clippy::too_many_arguments,
     reason = "the recursion's state, passed down"
@@ -251,18 +252,16 @@ pub(crate) fn blocked(
 pub(crate) fn reflect(
     p: &Prepared<'_>,
     mirror: &Ray,
-    object: usize,
+    (object, outside): (usize, bool),
     depth: u32,
     weight: f32,
     bound: f32,
     motion: &mut Motion,
     tile: Option<(&Tiles, u32, u32)>,
 ) -> Vec3 {
-    match tile.and_then(|(t, x, y)| t.mirror_at(object, x, y)) {
-        Some(c) => {
-            let h = p.closest_among(mirror, f32::INFINITY, c);
-            shade(p, mirror, h, depth, weight, bound, motion, None)
-        }
-        None => trace(p, mirror, depth, weight, bound, motion),
-    }
+    let h = match tile.and_then(|(t, x, y)| t.mirror_at(object, x, y)) {
+        Some(c) => p.closest_among(mirror, f32::INFINITY, c),
+        None => p.closest_from(Some((object, outside)), mirror, f32::INFINITY),
+    };
+    shade(p, mirror, h, depth, weight, bound, motion, None)
 }

@@ -148,11 +148,14 @@ impl Prepared<'_> {
     /// The linear scan of [`Prepared::closest`] (the planes, then the bounded
     /// objects in query order, each tested through its box with the nearest hit
     /// so far as the limit), eight boxes at a time: the same boxes pass, so it
-    /// finds the same hit.
-    pub(crate) fn closest_wide(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
+    /// finds the same hit. Object `skip` is not tested.
+    pub(crate) fn closest_wide(&self, ray: &Ray, t_max: f32, skip: usize) -> Option<Hit> {
         let best: Cell<Option<(f32, usize, Vec3)>> = Cell::new(None);
         let limit = || best.get().map_or(t_max, |b| b.0);
         let consider = |i: usize| {
+            if i == skip {
+                return;
+            }
             if let Some((t, n)) = self.hit_object(i, ray)
                 && t < limit()
             {

@@ -293,7 +293,16 @@ impl Packet<'_, '_> {
                 shade(self.p, &mirror, hit, 1, r, self.bound, &mut motion, None)
             } else {
                 let (p, b) = (self.p, self.bound);
-                reflect(p, &mirror, floor.object, 1, r, b, &mut motion, tile)
+                reflect(
+                    p,
+                    &mirror,
+                    (floor.object, false),
+                    1,
+                    r,
+                    b,
+                    &mut motion,
+                    tile,
+                )
             };
             if self.motion.is_some() {
                 let mut m = self.marks.get();
