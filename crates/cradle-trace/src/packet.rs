@@ -3,8 +3,9 @@
 //!
 //! A packet is taken when the only plane among the candidates whose screen
 //! rectangles reach its pixels is the floor (most of the picture), and every
-//! lane's ray meets it; a lane that meets another candidate first is left to the
-//! scalar path. Each lane computes exactly what the scalar path computes
+//! lane's ray meets it; a lane that meets another candidate first is shaded by
+//! the scalar `shade` from that hit. Each lane computes exactly what the scalar
+//! path computes
 //! (`CameraRays::ray`, `hit_plane`, `shade`): the same IEEE operations in the same
 //! order, with no fused multiply-add and no approximate reciprocal, so the bytes
 //! equal the scalar render's. The lines carry the scalar expression they mirror.
@@ -25,7 +26,7 @@
 use super::camera::CameraRays;
 use super::color::rgba8_lanes;
 use super::geometry::{Ray, T_MIN};
-use super::motion::{Cells, MotionGrid, Seg};
+use super::motion::{Cells, Motion, MotionGrid, Seg};
 use super::prepared::Prepared;
 use super::scene::{Material, Shape};
 use super::shade::SURFACE_OFFSET;
@@ -45,9 +46,7 @@ mod lanes;
 mod occlusion;
 mod vec;
 
-#[cfg(test)]
-use vec::load3;
-use vec::{L3, Surface, splat3, store3};
+use vec::{L3, Surface, load3, splat3, store3};
 
 pub use super::simd::force_portable;
 
@@ -167,6 +166,24 @@ impl Packet<'_, '_> {
         }
     }
 
+    /// What `f` returns, given a `Motion` for lane `i` (lent the scratch
+    /// buffer) whose cells and segments then go to the lane's in a tracked frame:
+    /// the scalar path's shading of one lane.
+    pub(crate) fn in_lane(&self, i: usize, f: impl FnOnce(&mut Motion) -> Vec3) -> Vec3 {
+        let mut motion = Motion::with(self.motion, self.scratch.take());
+        let c = f(&mut motion);
+        if self.motion.is_some() {
+            let mut m = self.marks.get();
+            m[i] |= motion.mask;
+            self.marks.set(m);
+            let mut segs = self.segs.borrow_mut();
+            segs.extend(motion.segs.drain(..).map(|s| (i as u8, s)));
+        }
+        motion.segs.clear();
+        self.scratch.set(motion.segs);
+        c
+    }
+
     /// Lane `i`'s linear colour in the last packet.
     pub(crate) fn color(&self, i: usize) -> Vec3 {
         let [r, g, b] = self.colors.get();
@@ -185,9 +202,9 @@ impl Packet<'_, '_> {
 
     /// Traces pixels `x0..x0 + 8` of row `y` at their centres into `out` (8 RGBA
     /// pixels) where the nearest hit is `floor` (`others`: the other objects that
-    /// can be met there): a bit per lane written. The other lanes (a ray that
-    /// misses the floor, or meets another object first; all of them when any
-    /// lane misses the floor) are left for the scalar path.
+    /// can be met there, first by the lanes they stop, then shaded by the
+    /// scalar `shade`): a bit per lane written, all or none. When any lane's ray
+    /// misses the floor, all are left for the scalar path.
     pub(crate) fn floor(
         &self,
         floor: &Floor<'_>,
@@ -268,16 +285,14 @@ impl Packet<'_, '_> {
             return (0, V8::ZERO);
         }
         // closest_among, after the plane: each other candidate through its box
-        // with the plane's t as the limit. Lanes that meet one first are the
-        // scalar path's.
-        let on_floor = if others.is_empty() {
-            0xFF
+        // with the nearest hit so far as the limit. Lanes that meet one first
+        // are shaded by the scalar `shade` (`front_lanes`).
+        let (front, which) = if others.is_empty() {
+            (0, k(0.0))
         } else {
-            !self.nearer_than(s, others, &d, t)
+            self.nearest_of(s, others, &d, t)
         };
-        if on_floor == 0 {
-            return (0, V8::ZERO);
-        }
+        let on_floor = !front;
         if self.motion.is_some() {
             let (da, ta) = (store3::<S>(&d), S::store(t));
             for i in (0..LANES).filter(|i| on_floor >> i & 1 != 0) {
@@ -304,10 +319,17 @@ impl Packet<'_, '_> {
             start,
             nn,
         };
-        let color = self.shade_lanes(s, floor, (x0, y), on_floor, &hit);
+        let mut color = if on_floor == 0 {
+            splat3(s, Vec3::ZERO)
+        } else {
+            self.shade_lanes(s, floor, (x0, y), on_floor, &hit)
+        };
+        if front != 0 {
+            color = self.front_lanes(s, (x0, y, front), &d, which, color);
+        }
         let color = store3::<S>(&color);
         self.colors.set([color.x, color.y, color.z]);
-        (on_floor, color)
+        (0xFF, color)
     }
 }
 

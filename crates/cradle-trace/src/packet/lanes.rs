@@ -10,9 +10,8 @@
 )]
 
 use super::occlusion::{box8, hit8, recip};
-use super::{F8, Floor, L3, LANES, Packet, Surface, V8, f8, lanes, splat3, store3};
+use super::{F8, Floor, L3, LANES, Packet, Surface, V8, f8, lanes, load3, splat3, store3};
 use crate::geometry::{Ray, T_MIN};
-use crate::motion::Motion;
 use crate::prepared::Hit;
 use crate::scene::{Light, Shape};
 use crate::shade::{BAILOUT, base_color, powi, reflect, shade, whole};
@@ -283,42 +282,56 @@ impl Packet<'_, '_> {
                 }
                 return bg;
             }
-            let mut motion = Motion::with(self.motion, self.scratch.take());
-            let c = if let Some(which) = nearest {
-                // `reflect` through the tile's list: the object found above,
-                // met by the scalar test for its normal (the same `t`).
-                let k = which[i] as usize;
-                let hit =
-                    (self.p.hit_object(k, &mirror)).map(|(t, n)| Hit::facing(&mirror, t, k, n));
-                shade(self.p, &mirror, hit, 1, r, self.bound, &mut motion, None)
-            } else {
-                let (p, b) = (self.p, self.bound);
-                reflect(
-                    p,
-                    &mirror,
-                    (floor.object, false),
-                    1,
-                    r,
-                    b,
-                    &mut motion,
-                    tile,
-                )
-            };
-            if self.motion.is_some() {
-                let mut m = self.marks.get();
-                m[i] |= motion.mask;
-                self.marks.set(m);
-                let mut segs = self.segs.borrow_mut();
-                segs.extend(motion.segs.drain(..).map(|s| (i as u8, s)));
-            }
-            motion.segs.clear();
-            self.scratch.set(motion.segs);
-            c
+            self.in_lane(i, |motion| {
+                if let Some(which) = nearest {
+                    // `reflect` through the tile's list: the object found above,
+                    // met by the scalar test for its normal (the same `t`).
+                    let k = which[i] as usize;
+                    let hit =
+                        (self.p.hit_object(k, &mirror)).map(|(t, n)| Hit::facing(&mirror, t, k, n));
+                    shade(self.p, &mirror, hit, 1, r, self.bound, motion, None)
+                } else {
+                    let (p, b) = (self.p, self.bound);
+                    reflect(p, &mirror, (floor.object, false), 1, r, b, motion, tile)
+                }
+            })
         });
         L3 {
             x: s.load(&f8(|i| each[i].x)),
             y: s.load(&f8(|i| each[i].y)),
             z: s.load(&f8(|i| each[i].z)),
         }
+    }
+
+    /// `color` with the lanes of `front` (bits) replaced by what `trace_primary`
+    /// gives their primary rays (from the eye along `d`), whose nearest hit is
+    /// object `which` (per lane, as `f32`) before the floor: the scalar `shade`
+    /// at depth 0, from that object's scalar hit test (the same `t`, and its
+    /// normal).
+    #[inline(always)]
+    pub(super) fn front_lanes<S: Simd>(
+        &self,
+        s: S,
+        (x0, y, front): (u32, u32, u8),
+        d: &L3<S::F>,
+        which: S::F,
+        color: L3<S::F>,
+    ) -> L3<S::F> {
+        let (dir, which) = (store3::<S>(d), S::store(which));
+        let mut out = store3::<S>(&color);
+        for i in (0..LANES).filter(|i| front >> i & 1 != 0) {
+            let ray = Ray {
+                origin: self.cam.origin,
+                dir: dir.lane(i),
+            };
+            let k = which[i] as usize;
+            let hit = (self.p.hit_object(k, &ray)).map(|(t, n)| Hit::facing(&ray, t, k, n));
+            let tile = Some((self.tiles, x0 + i as u32, y));
+            let c = self.in_lane(i, |motion| {
+                shade(self.p, &ray, hit, 0, 1.0, self.bound, motion, tile)
+            });
+            (out.x[i], out.y[i], out.z[i]) = (c.x, c.y, c.z);
+        }
+        load3(s, &out)
     }
 }

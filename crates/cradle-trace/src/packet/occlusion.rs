@@ -185,21 +185,33 @@ struct Rays<'a, F> {
 }
 
 impl Packet<'_, '_> {
-    /// Per lane (bits), whether any of the objects `others` meets its primary
-    /// ray (from the eye along `d`) before `t`: `closest_among`'s box test with
-    /// `t` as the limit, then its hit test.
+    /// Per lane, which of the objects `others` its primary ray (from the eye
+    /// along `d`) meets first before `t` (the floor's hit), as `closest_among`
+    /// finds it after the floor: each box tested with the nearest hit so far as
+    /// its limit, a hit taken only where nearer. The lanes that meet one (bits)
+    /// and the object per lane (as `f32`, valid in those lanes).
     #[inline(always)]
-    pub(super) fn nearer_than<S: Simd>(&self, s: S, others: &[usize], d: &L3<S::F>, t: S::F) -> u8 {
+    pub(super) fn nearest_of<S: Simd>(
+        &self,
+        s: S,
+        others: &[usize],
+        d: &L3<S::F>,
+        t: S::F,
+    ) -> (u8, S::F) {
         let eye = splat3(s, self.cam.origin);
         let inv = recip(s, d);
-        let mut front = 0;
+        let (mut best, mut which) = (t, s.splat(0.0));
         for &k in others {
-            let inside = S::bits(box8(s, &self.p.boxes[k], &eye, &inv, t));
-            if inside != 0 {
-                front |= inside & S::bits(blocks8(s, self.p.geom(k), &eye, d, t));
+            let inside = box8(s, &self.p.boxes[k], &eye, &inv, best);
+            if S::bits(inside) == 0 {
+                continue;
             }
+            let h = hit8(s, self.p.geom(k), &eye, d);
+            let take = inside & S::lt(h, best);
+            best = S::select(take, h, best);
+            which = S::select(take, s.splat(k as f32), which);
         }
-        front
+        (S::bits(S::lt(best, t)), which)
     }
 
     /// The lanes of `live` (bits) whose rays object `k` meets before `dist`.

@@ -120,7 +120,6 @@ pub(super) fn splat3<S: Simd>(s: S, v: Vec3) -> L3<S::F> {
 
 /// The arrays as lanes.
 #[inline(always)]
-#[cfg(test)]
 pub(super) fn load3<S: Simd>(s: S, v: &V8) -> L3<S::F> {
     L3 {
         x: s.load(&v.x),
