@@ -104,3 +104,23 @@ fn packets_equal_the_reference_at_grazing_rims_caps_and_light() {
     ];
     assert_packets_match(&scene_at(&low, 0.3), "grazing light");
 }
+
+#[test]
+fn every_mix_of_the_skips_equals_the_reference() {
+    // Packets need tile culling; with shadow culling off their lanes on the
+    // cradle test every object for shadows, with it on the casters' lists.
+    let mut config = Config::default();
+    (config.render.width, config.render.height) = (96, 48);
+    config.start.lift = 2;
+    let s = scene_at(&config, 0.37);
+    let reference = trace::render_serial_with(&s, RenderOptions::FULL);
+    for bits in 0..8 {
+        let options = RenderOptions {
+            tile_culling: bits & 1 != 0,
+            shadow_culling: bits & 2 != 0,
+            bvh: bits & 4 != 0,
+        };
+        let img = trace::render_serial_with(&s, options);
+        assert!(img == reference, "{options:?}");
+    }
+}

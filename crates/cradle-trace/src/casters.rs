@@ -156,13 +156,25 @@ impl Casters {
     /// The casters towards light `light` of a shadow ray starting at `at`, from
     /// a point met from `outside` (then without the object itself).
     pub(crate) fn at(&self, light: usize, at: Vec3, outside: bool) -> Option<&WideBoxes> {
-        let piece = if self.pieces == 1 {
+        self.list(light, self.piece(at), outside)
+    }
+
+    /// The piece a shadow ray starting at `at` starts from.
+    #[inline]
+    pub(crate) fn piece(&self, at: Vec3) -> usize {
+        if self.pieces == 1 {
             0
         } else {
             let s = (at - self.a).dot(self.u) / self.len * self.pieces as f32;
             // Clamped to the ends (the caps' starts lie just beyond them); NaN to 0.
             (s.max(0.0) as usize).min(self.pieces - 1)
-        };
+        }
+    }
+
+    /// The casters towards light `light` of piece `piece`, with the object
+    /// itself or (`outside`) without.
+    #[inline]
+    pub(crate) fn list(&self, light: usize, piece: usize, outside: bool) -> Option<&WideBoxes> {
         let (all, others) = &self.lists.get(light)?[piece];
         Some(if outside { others } else { all })
     }

@@ -3,20 +3,20 @@
 //!
 //! A packet is taken when the only plane among the candidates whose screen
 //! rectangles reach its pixels is the floor (most of the picture), and every
-//! lane's ray meets it; a lane that meets another candidate first is shaded by
-//! the scalar `shade` from that hit. Each lane computes exactly what the scalar
-//! path computes
-//! (`CameraRays::ray`, `hit_plane`, `shade`): the same IEEE operations in the same
-//! order, with no fused multiply-add and no approximate reciprocal, so the bytes
-//! equal the scalar render's. The lines carry the scalar expression they mirror.
+//! lane's ray meets it; lanes that meet another candidate first (the cradle) are
+//! shaded from that hit, over the lanes or by the scalar `shade` (`objects`).
+//! Each lane computes exactly what the scalar path computes (`CameraRays::ray`,
+//! `hit_plane`, `shade`): the same IEEE operations in the same order, with no
+//! fused multiply-add and no approximate reciprocal, so the bytes equal the
+//! scalar render's. The lines carry the scalar expression they mirror.
 //! What the cradle's mirror image needs past its nearest hit goes lane by lane
 //! through the scalar `shade`.
 //!
 //! The kernel is written once over a lane build `S: Simd` (`crate::simd`): one
 //! AVX instruction per operation where the CPU has AVX2 (chosen at run time, in
 //! `Packet::floor`), plain loops over arrays elsewhere. Rays and hits are here,
-//! the shading in `lanes`, the objects met on the way in `occlusion`, the lane
-//! vectors in `vec`.
+//! the shading in `lanes` (the cradle's lanes in `objects`), the objects met on
+//! the way in `occlusion`, the lane vectors in `vec`.
 
 #![expect(
     clippy::inline_always,
@@ -43,6 +43,7 @@ pub const LANES: usize = 8;
 #[cfg(test)]
 mod lane_tests;
 mod lanes;
+mod objects;
 mod occlusion;
 mod vec;
 
@@ -322,7 +323,7 @@ impl Packet<'_, '_> {
         let mut color = if on_floor == 0 {
             splat3(s, Vec3::ZERO)
         } else {
-            self.shade_lanes(s, floor, (x0, y), on_floor, &hit)
+            self.shade_lanes(s, lanes::Met::Floor(floor), (x0, y), on_floor, &hit)
         };
         if front != 0 {
             color = self.front_lanes(s, (x0, y, front), &d, which, color);

@@ -327,6 +327,12 @@ impl<'a> Prepared<'a> {
         self.occluded_by(ray, t_max, self.footprints(from, light))
     }
 
+    /// The casters of object `i`'s shadow rays, when shadow culling is on and
+    /// it is bounded.
+    pub(crate) fn casters(&self, i: usize) -> Option<&Casters> {
+        self.casters.as_ref()?.get(i)?.as_ref()
+    }
+
     /// The footprints of the bounded objects on plane `plane` (an object index)
     /// from light `light`, when shadow culling is on.
     pub(crate) fn footprints(&self, plane: usize, light: usize) -> Option<&Footprints> {

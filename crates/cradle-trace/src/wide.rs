@@ -103,6 +103,15 @@ impl WideBoxes {
         Self { chunks }
     }
 
+    /// The items, in order.
+    pub(crate) fn items(&self) -> impl Iterator<Item = usize> + '_ {
+        self.chunks.iter().flat_map(|c| {
+            (0..W)
+                .filter(|&j| c.used >> j & 1 != 0)
+                .map(|j| c.items[j] as usize)
+        })
+    }
+
     /// Calls `visit(item, box, t_max)` for every box, in order, that the ray
     /// meets before `t_max`, which is `limit()` asked again at each chunk: a
     /// `visit` whose limit fell within the chunk tests the box again with it.

@@ -10,10 +10,10 @@
 )]
 
 use super::occlusion::{box8, hit8, recip};
-use super::{F8, Floor, L3, LANES, Packet, Surface, V8, f8, lanes, load3, splat3, store3};
+use super::{F8, Floor, L3, LANES, Packet, Surface, V8, f8, lanes, splat3, store3};
 use crate::geometry::{Ray, T_MIN};
 use crate::prepared::Hit;
-use crate::scene::{Light, Shape};
+use crate::scene::{Light, Material, Shape};
 use crate::shade::{BAILOUT, base_color, powi, reflect, shade, whole};
 use crate::simd::Simd;
 use crate::tiles::Tiles;
@@ -23,16 +23,38 @@ use glam::Vec3;
 /// its parity are exact in `f32`.
 const SMALL: f32 = 4_194_304.0; // 2^22
 
+/// What the lanes to shade met: the packet's floor, or one bounded object
+/// (with a plain colour), met from outside in the lanes of `outside`.
+#[derive(Clone, Copy)]
+pub(super) enum Met<'m> {
+    Floor(&'m Floor<'m>),
+    Object {
+        object: usize,
+        material: &'m Material,
+        outside: u8,
+    },
+}
+
+impl Met<'_> {
+    #[inline(always)]
+    fn material(&self) -> &Material {
+        match *self {
+            Met::Floor(f) => f.material,
+            Met::Object { material, .. } => material,
+        }
+    }
+}
+
 impl Packet<'_, '_> {
-    /// `shade` of floor hits at depth 0, lane by lane, at `hit`; `on_floor` the
-    /// lanes to shade (a bit each).
+    /// `shade` at depth 0 of what the lanes met (`met`), lane by lane, at
+    /// `hit`; `on` the lanes to shade (a bit each).
     #[inline(always)]
     pub(super) fn shade_lanes<S: Simd>(
         &self,
         s: S,
-        floor: &Floor<'_>,
+        met: Met<'_>,
         (x0, y): (u32, u32),
-        on_floor: u8,
+        on: u8,
         hit: &Surface<S::F>,
     ) -> L3<S::F> {
         let Surface {
@@ -42,10 +64,14 @@ impl Packet<'_, '_> {
             nn,
         } = hit;
         let p = self.p;
-        let m = floor.material;
+        let m = met.material();
         let k = |v: f32| s.splat(v);
         let tile = Some((self.tiles, x0, y));
-        let b = Self::surface_lanes(s, floor, point);
+        let b = match met {
+            Met::Floor(floor) => Self::surface_lanes(s, floor, point),
+            // A plain colour (a checker is left to the scalar path).
+            Met::Object { material, .. } => splat3(s, material.color),
+        };
         let mut color = splat3(s, Vec3::ZERO);
         for (li, light) in p.scene.lights.iter().enumerate() {
             let (to_light, dist, lc) = match *light {
@@ -67,8 +93,8 @@ impl Packet<'_, '_> {
             };
             // lambert = n.dot(to_light)
             let lambert = nn.dot(&to_light);
-            // Lanes off the floor are the scalar path's: no shadow rays for them.
-            let want = S::select(s.mask(on_floor), lambert, k(0.0));
+            // Lanes not to shade trace no shadow rays.
+            let want = S::select(s.mask(on), lambert, k(0.0));
             // !(lambert <= 0): a NaN lambert is traced, as in the scalar code.
             let traced = S::bits(!S::le(want, k(0.0)));
             if self.motion.is_some() {
@@ -79,7 +105,13 @@ impl Packet<'_, '_> {
                     &S::store(dist),
                 );
             }
-            let blocked = self.shadows(s, floor, (x0, y, li), (start, &to_light, dist), want);
+            let rays = (start, &to_light, dist);
+            let blocked = match met {
+                Met::Floor(floor) => self.shadows(s, floor, (x0, y, li), rays, want),
+                Met::Object {
+                    object, outside, ..
+                } => s.mask(self.object_shadows(s, (object, li, outside), rays, traced)),
+            };
             // Skipped where lambert <= 0 or the light is blocked; else
             // color += base * light_color * lambert.
             let lit = !S::le(lambert, k(0.0)) & !blocked;
@@ -120,7 +152,12 @@ impl Packet<'_, '_> {
         }
         let r = m.reflective;
         if r > 0.0 && 0 < p.scene.max_depth && r * self.bound >= BAILOUT {
-            let refl = self.mirrors(s, floor, (x0, y, on_floor), hit, r, tile);
+            let refl = match met {
+                Met::Floor(floor) => self.mirrors(s, floor, (x0, y, on), hit, r, tile),
+                Met::Object {
+                    object, outside, ..
+                } => self.object_mirrors(s, (x0, y, on), (object, outside), hit, r),
+            };
             // color = color * (1.0 - r) + reflected * r
             color = color.scale(k(1.0 - r)).add(&refl.scale(k(r)));
         }
@@ -301,37 +338,5 @@ impl Packet<'_, '_> {
             y: s.load(&f8(|i| each[i].y)),
             z: s.load(&f8(|i| each[i].z)),
         }
-    }
-
-    /// `color` with the lanes of `front` (bits) replaced by what `trace_primary`
-    /// gives their primary rays (from the eye along `d`), whose nearest hit is
-    /// object `which` (per lane, as `f32`) before the floor: the scalar `shade`
-    /// at depth 0, from that object's scalar hit test (the same `t`, and its
-    /// normal).
-    #[inline(always)]
-    pub(super) fn front_lanes<S: Simd>(
-        &self,
-        s: S,
-        (x0, y, front): (u32, u32, u8),
-        d: &L3<S::F>,
-        which: S::F,
-        color: L3<S::F>,
-    ) -> L3<S::F> {
-        let (dir, which) = (store3::<S>(d), S::store(which));
-        let mut out = store3::<S>(&color);
-        for i in (0..LANES).filter(|i| front >> i & 1 != 0) {
-            let ray = Ray {
-                origin: self.cam.origin,
-                dir: dir.lane(i),
-            };
-            let k = which[i] as usize;
-            let hit = (self.p.hit_object(k, &ray)).map(|(t, n)| Hit::facing(&ray, t, k, n));
-            let tile = Some((self.tiles, x0 + i as u32, y));
-            let c = self.in_lane(i, |motion| {
-                shade(self.p, &ray, hit, 0, 1.0, self.bound, motion, tile)
-            });
-            (out.x[i], out.y[i], out.z[i]) = (c.x, c.y, c.z);
-        }
-        load3(s, &out)
     }
 }

@@ -177,11 +177,11 @@ pub(super) fn lookup<S: Simd>(s: S, g: &GridView, x: &L3<S::F>) -> [Lookup; LANE
 
 /// The lanes' shadow rays: from `start` along `dir` (`inv` its inverse) up to
 /// `dist`.
-struct Rays<'a, F> {
-    start: &'a L3<F>,
-    dir: &'a L3<F>,
-    inv: L3<F>,
-    dist: F,
+pub(super) struct Rays<'a, F> {
+    pub(super) start: &'a L3<F>,
+    pub(super) dir: &'a L3<F>,
+    pub(super) inv: L3<F>,
+    pub(super) dist: F,
 }
 
 impl Packet<'_, '_> {
@@ -218,7 +218,7 @@ impl Packet<'_, '_> {
     /// (A method, not a closure: a closure left as a call is not compiled for
     /// AVX2.)
     #[inline(always)]
-    fn blocks<S: Simd>(&self, s: S, k: usize, r: &Rays<'_, S::F>, live: u8) -> u8 {
+    pub(super) fn blocks<S: Simd>(&self, s: S, k: usize, r: &Rays<'_, S::F>, live: u8) -> u8 {
         let Rays {
             start,
             dir,
