@@ -326,7 +326,14 @@ impl Packet<'_, '_> {
             self.shade_lanes(s, lanes::Met::Floor(floor), (x0, y), on_floor, &hit)
         };
         if front != 0 {
-            color = self.front_lanes(s, (x0, y, front), &d, which, color);
+            let eye = splat3(s, c.origin);
+            let ray = objects::Bounce {
+                origin: &eye,
+                d: &d,
+                depth: 0,
+                weight: 1.0,
+            };
+            color = self.objects_lanes(s, (x0, y, front), &ray, which, color);
         }
         let color = store3::<S>(&color);
         self.colors.set([color.x, color.y, color.z]);

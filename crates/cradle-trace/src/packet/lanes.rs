@@ -9,12 +9,12 @@
     reason = "the lane code is inlined into each entry point, so the AVX2 one compiles it for AVX2"
 )]
 
+use super::objects::Bounce;
 use super::occlusion::{box8, hit8, recip};
-use super::{F8, Floor, L3, LANES, Packet, Surface, V8, f8, lanes, splat3, store3};
+use super::{F8, Floor, L3, LANES, Packet, Surface, V8, f8, lanes, load3, splat3, store3};
 use crate::geometry::{Ray, T_MIN};
-use crate::prepared::Hit;
 use crate::scene::{Light, Material, Shape};
-use crate::shade::{BAILOUT, base_color, powi, reflect, shade, whole};
+use crate::shade::{BAILOUT, base_color, powi, reflect, whole};
 use crate::simd::Simd;
 use crate::tiles::Tiles;
 use glam::Vec3;
@@ -32,6 +32,8 @@ pub(super) enum Met<'m> {
         object: usize,
         material: &'m Material,
         outside: u8,
+        /// The bounce the lanes' rays are, and their path weight.
+        bounce: (u32, f32),
     },
 }
 
@@ -41,6 +43,16 @@ impl Met<'_> {
         match *self {
             Met::Floor(f) => f.material,
             Met::Object { material, .. } => material,
+        }
+    }
+
+    /// The bounce the lanes' rays are, and their path weight (the floor's: the
+    /// eye's rays).
+    #[inline(always)]
+    fn bounce(&self) -> (u32, f32) {
+        match *self {
+            Met::Floor(_) => (0, 1.0),
+            Met::Object { bounce, .. } => bounce,
         }
     }
 }
@@ -151,12 +163,16 @@ impl Packet<'_, '_> {
             }
         }
         let r = m.reflective;
-        if r > 0.0 && 0 < p.scene.max_depth && r * self.bound >= BAILOUT {
+        let (depth, weight) = met.bounce();
+        if r > 0.0 && depth < p.scene.max_depth && weight * r * self.bound >= BAILOUT {
             let refl = match met {
                 Met::Floor(floor) => self.mirrors(s, floor, (x0, y, on), hit, r, tile),
                 Met::Object {
                     object, outside, ..
-                } => self.object_mirrors(s, (x0, y, on), (object, outside), hit, r),
+                } => {
+                    let from = (object, outside, depth);
+                    self.object_mirrors(s, (x0, y, on), from, hit, weight * r)
+                }
             };
             // color = color * (1.0 - r) + reflected * r
             color = color.scale(k(1.0 - r)).add(&refl.scale(k(r)));
@@ -296,47 +312,47 @@ impl Packet<'_, '_> {
                 which = S::select(take, s.splat(k as f32), which);
             }
             missed = !S::bits(S::lt(best, inf));
-            nearest = Some(S::store(which));
+            nearest = Some(which);
         }
         if on_floor & !missed == 0 && self.motion.is_none() {
             // Every lane sees the background, and there is nothing to note.
             return splat3(s, self.p.scene.background);
         }
         let (start_a, dir_a) = (store3::<S>(start), store3::<S>(&dir));
-        let bg = self.p.scene.background;
-        let each: [Vec3; LANES] = lanes(|i| {
-            if on_floor >> i & 1 == 0 {
-                return bg;
+        let bg = splat3(s, self.p.scene.background);
+        if self.motion.is_some() {
+            // `reflect` would find nothing and note the ray to infinity.
+            for i in (0..LANES).filter(|i| on_floor & missed >> i & 1 != 0) {
+                let mirror = Ray {
+                    origin: start_a.lane(i),
+                    dir: dir_a.lane(i),
+                };
+                self.note(i, &mirror, f32::INFINITY);
             }
+        }
+        let met = on_floor & !missed;
+        if let Some(which) = nearest {
+            // `reflect` through the tile's list: the object found above.
+            let bounce = Bounce {
+                origin: start,
+                d: &dir,
+                depth: 1,
+                weight: r,
+            };
+            return self.objects_lanes(s, (x0, y, met), &bounce, which, bg);
+        }
+        let mut out = store3::<S>(&bg);
+        for i in (0..LANES).filter(|i| met >> i & 1 != 0) {
             let mirror = Ray {
                 origin: start_a.lane(i),
                 dir: dir_a.lane(i),
             };
-            if missed >> i & 1 != 0 {
-                // `reflect` would find nothing and note the ray to infinity.
-                if self.motion.is_some() {
-                    self.note(i, &mirror, f32::INFINITY);
-                }
-                return bg;
-            }
-            self.in_lane(i, |motion| {
-                if let Some(which) = nearest {
-                    // `reflect` through the tile's list: the object found above,
-                    // met by the scalar test for its normal (the same `t`).
-                    let k = which[i] as usize;
-                    let hit =
-                        (self.p.hit_object(k, &mirror)).map(|(t, n)| Hit::facing(&mirror, t, k, n));
-                    shade(self.p, &mirror, hit, 1, r, self.bound, motion, None)
-                } else {
-                    let (p, b) = (self.p, self.bound);
-                    reflect(p, &mirror, (floor.object, false), 1, r, b, motion, tile)
-                }
-            })
-        });
-        L3 {
-            x: s.load(&f8(|i| each[i].x)),
-            y: s.load(&f8(|i| each[i].y)),
-            z: s.load(&f8(|i| each[i].z)),
+            let (p, b) = (self.p, self.bound);
+            let c = self.in_lane(i, |motion| {
+                reflect(p, &mirror, (floor.object, false), 1, r, b, motion, tile)
+            });
+            (out.x[i], out.y[i], out.z[i]) = (c.x, c.y, c.z);
         }
+        load3(s, &out)
     }
 }

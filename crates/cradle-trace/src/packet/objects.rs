@@ -15,7 +15,7 @@
 
 use super::lanes::Met;
 use super::occlusion::{Rays, recip};
-use super::{L3, LANES, Packet, Surface, V8, lanes, load3, splat3, store3};
+use super::{L3, LANES, Packet, Surface, V8, lanes, load3, store3};
 use crate::casters::clear_of;
 use crate::geometry::Ray;
 use crate::prepared::Hit;
@@ -26,22 +26,37 @@ use crate::simd::Simd;
 /// Fewer lanes than this on one object are shaded one by one.
 const SHARED: u32 = 2;
 
+/// The lanes' rays: from `origin` along `d`, a bounce at `depth` with path
+/// weight `weight` (the eye's rays: 0 and 1).
+pub(super) struct Bounce<'a, F> {
+    pub(super) origin: &'a L3<F>,
+    pub(super) d: &'a L3<F>,
+    pub(super) depth: u32,
+    pub(super) weight: f32,
+}
+
 impl Packet<'_, '_> {
-    /// `color` with the lanes of `front` (bits) replaced by what `trace_primary`
-    /// gives their primary rays (from the eye along `d`), whose nearest hit is
-    /// object `which` (per lane, as `f32`) before the floor.
+    /// `color` with the lanes of `on` (bits) replaced by what `shade` gives
+    /// their rays (`ray`), whose nearest hit is object `which` (per lane, as
+    /// `f32`), met by the scalar test for its normal (the same `t`): the eye's
+    /// rays that meet the cradle before the floor (`trace_primary`), or the
+    /// floor's mirror rays (`reflect` through the tile's list).
     #[inline(always)]
-    pub(super) fn front_lanes<S: Simd>(
+    pub(super) fn objects_lanes<S: Simd>(
         &self,
         s: S,
-        (x0, y, front): (u32, u32, u8),
-        d: &L3<S::F>,
+        (x0, y, on): (u32, u32, u8),
+        ray: &Bounce<'_, S::F>,
         which: S::F,
         color: L3<S::F>,
     ) -> L3<S::F> {
-        let (dir, which) = (store3::<S>(d), S::store(which));
+        let (origin, dir, which) = (store3::<S>(ray.origin), store3::<S>(ray.d), S::store(which));
+        let lane_ray = |i: usize| Ray {
+            origin: origin.lane(i),
+            dir: dir.lane(i),
+        };
         let mut out = store3::<S>(&color);
-        let mut todo = front;
+        let mut todo = on;
         while todo != 0 {
             let k = which[todo.trailing_zeros() as usize] as usize;
             let mut group = 0u8;
@@ -53,44 +68,25 @@ impl Packet<'_, '_> {
             group &= todo;
             todo &= !group;
             let material = &self.p.scene.objects[k].material;
-            // Each lane's hit: the scalar test of object `k` (the same `t`).
             let mut hits = [None; LANES];
             for i in (0..LANES).filter(|i| group >> i & 1 != 0) {
-                let ray = Ray {
-                    origin: self.cam.origin,
-                    dir: dir.lane(i),
-                };
-                hits[i] = (self.p.hit_object(k, &ray)).map(|(t, n)| Hit::facing(&ray, t, k, n));
+                let r = lane_ray(i);
+                hits[i] = (self.p.hit_object(k, &r)).map(|(t, n)| Hit::facing(&r, t, k, n));
             }
             let all_hit = hits.iter().flatten().count() == group.count_ones() as usize;
             if group.count_ones() < SHARED || material.checker.is_some() || !all_hit {
                 for i in (0..LANES).filter(|i| group >> i & 1 != 0) {
-                    let ray = Ray {
-                        origin: self.cam.origin,
-                        dir: dir.lane(i),
-                    };
-                    let (x, tiles) = (x0 + i as u32, self.tiles);
-                    // (A hit the lanes found is met by the scalar test too; were
-                    // it not, the tile's candidates would be searched again.)
-                    let hit = hits[i]
-                        .or_else(|| self.p.closest_among(&ray, f32::INFINITY, tiles.at(x, y)));
+                    let r = lane_ray(i);
+                    let tile = (ray.depth == 0).then_some((self.tiles, x0 + i as u32, y));
+                    let (depth, weight, bound) = (ray.depth, ray.weight, self.bound);
                     let c = self.in_lane(i, |motion| {
-                        shade(
-                            self.p,
-                            &ray,
-                            hit,
-                            0,
-                            1.0,
-                            self.bound,
-                            motion,
-                            Some((tiles, x, y)),
-                        )
+                        shade(self.p, &r, hits[i], depth, weight, bound, motion, tile)
                     });
                     (out.x[i], out.y[i], out.z[i]) = (c.x, c.y, c.z);
                 }
                 continue;
             }
-            let c = self.object_lanes(s, (x0, y, group), d, &hits, material);
+            let c = self.object_lanes(s, (x0, y, group), ray, &hits, material);
             let c = store3::<S>(&c);
             for i in (0..LANES).filter(|i| group >> i & 1 != 0) {
                 (out.x[i], out.y[i], out.z[i]) = (c.x[i], c.y[i], c.z[i]);
@@ -99,20 +95,20 @@ impl Packet<'_, '_> {
         load3(s, &out)
     }
 
-    /// `shade` at depth 0 of the lanes of `group`, whose primary rays (along
-    /// `d`) all meet one object with a plain `material` at `hits`.
+    /// `shade` of the lanes of `group`, whose rays (`ray`) all meet one object
+    /// with a plain `material` at `hits`.
     #[inline(always)]
     fn object_lanes<S: Simd>(
         &self,
         s: S,
         (x0, y, group): (u32, u32, u8),
-        d: &L3<S::F>,
+        ray: &Bounce<'_, S::F>,
         hits: &[Option<Hit>; LANES],
         material: &Material,
     ) -> L3<S::F> {
         let mut object = 0;
         let (mut t, mut n, mut outside) = ([0.0; LANES], V8::ZERO, 0u8);
-        let dir = store3::<S>(d);
+        let (origin, dir) = (store3::<S>(ray.origin), store3::<S>(ray.d));
         for (i, h) in hits.iter().enumerate() {
             if let Some(h) = h {
                 object = h.object;
@@ -120,21 +116,21 @@ impl Packet<'_, '_> {
                 (n.x[i], n.y[i], n.z[i]) = (h.normal.x, h.normal.y, h.normal.z);
                 outside |= u8::from(h.outside) << i;
                 if self.motion.is_some() {
-                    // `shade` notes the primary ray up to its hit.
-                    let ray = Ray {
-                        origin: self.cam.origin,
+                    // `shade` notes its ray up to the hit.
+                    let r = Ray {
+                        origin: origin.lane(i),
                         dir: dir.lane(i),
                     };
-                    self.note(i, &ray, h.t);
+                    self.note(i, &r, h.t);
                 }
             }
         }
         let nn = load3(s, &n);
         // point = ray.at(t): origin + dir * t; start = point + n * SURFACE_OFFSET
-        let point = splat3(s, self.cam.origin).add(&d.scale(s.load(&t)));
+        let point = ray.origin.add(&ray.d.scale(s.load(&t)));
         let start = point.add(&nn.scale(s.splat(SURFACE_OFFSET)));
         let hit = Surface {
-            d: *d,
+            d: *ray.d,
             point,
             start,
             nn,
@@ -143,6 +139,7 @@ impl Packet<'_, '_> {
             object,
             material,
             outside,
+            bounce: (ray.depth, ray.weight),
         };
         self.shade_lanes(s, met, (x0, y), group, &hit)
     }
@@ -214,17 +211,17 @@ impl Packet<'_, '_> {
     }
 
     /// Per lane, the radiance the mirror rays of the lanes of `on` bring back
-    /// (`reflect` at depth 1 with weight `r`, lane by lane) from points of
-    /// `object` met from outside in the lanes of `outside`; the background in
-    /// the other lanes.
+    /// (`reflect` with weight `weight` after a bounce at `depth`, lane by lane)
+    /// from points of `object` met from outside in the lanes of `outside`; the
+    /// background in the other lanes.
     #[inline(always)]
     pub(super) fn object_mirrors<S: Simd>(
         &self,
         s: S,
         (x0, y, on): (u32, u32, u8),
-        (object, outside): (usize, u8),
+        (object, outside, depth): (usize, u8, u32),
         Surface { d, start, nn, .. }: &Surface<S::F>,
-        r: f32,
+        weight: f32,
     ) -> L3<S::F> {
         // dir - 2.0 * dir.dot(n) * n
         let dir = store3::<S>(&d.sub(&nn.scale(s.splat(2.0) * d.dot(nn))));
@@ -236,9 +233,18 @@ impl Packet<'_, '_> {
                 dir: dir.lane(i),
             };
             let from = (object, outside >> i & 1 != 0);
-            let tile = Some((self.tiles, x0 + i as u32, y));
+            let tile = (depth == 0).then_some((self.tiles, x0 + i as u32, y));
             let c = self.in_lane(i, |motion| {
-                reflect(self.p, &mirror, from, 1, r, self.bound, motion, tile)
+                reflect(
+                    self.p,
+                    &mirror,
+                    from,
+                    depth + 1,
+                    weight,
+                    self.bound,
+                    motion,
+                    tile,
+                )
             });
             (out.x[i], out.y[i], out.z[i]) = (c.x, c.y, c.z);
         }
