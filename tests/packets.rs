@@ -124,3 +124,16 @@ fn every_mix_of_the_skips_equals_the_reference() {
         assert!(img == reference, "{options:?}");
     }
 }
+
+#[test]
+fn packets_equal_the_reference_at_every_reflection_depth() {
+    // No mirror rays at all, one bounce, and the most the config allows
+    // (touching balls reflect each other many times over).
+    for depth in [0, 1, 2, 16] {
+        let mut config = Config::default();
+        (config.render.width, config.render.height) = (96, 48);
+        config.render.max_depth = depth;
+        config.start.lift = 2;
+        assert_packets_match(&scene_at(&config, 0.37), &format!("depth {depth}"));
+    }
+}

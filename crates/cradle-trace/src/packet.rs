@@ -4,19 +4,19 @@
 //! A packet is taken when the only plane among the candidates whose screen
 //! rectangles reach its pixels is the floor (most of the picture), and every
 //! lane's ray meets it; lanes that meet another candidate first (the cradle) are
-//! shaded from that hit, over the lanes or by the scalar `shade` (`objects`).
+//! traced on from that hit over the lanes.
 //! Each lane computes exactly what the scalar path computes (`CameraRays::ray`,
 //! `hit_plane`, `shade`): the same IEEE operations in the same order, with no
 //! fused multiply-add and no approximate reciprocal, so the bytes equal the
 //! scalar render's. The lines carry the scalar expression they mirror.
-//! What the cradle's mirror image needs past its nearest hit goes lane by lane
-//! through the scalar `shade`.
+//! What lies past the floor's own shading (the cradle, its mirror image, the
+//! reflections in it) is traced on over the lanes, bounce by bounce (`bounce`).
 //!
 //! The kernel is written once over a lane build `S: Simd` (`crate::simd`): one
 //! AVX instruction per operation where the CPU has AVX2 (chosen at run time, in
 //! `Packet::floor`), plain loops over arrays elsewhere. Rays and hits are here,
-//! the shading in `lanes` (the cradle's lanes in `objects`), the objects met on
-//! the way in `occlusion`, the lane vectors in `vec`.
+//! the shading in `lanes`, the bounces past it in `bounce`, the objects met on
+//! the way in `occlusion` and `objects`, the lane vectors in `vec`.
 
 #![expect(
     clippy::inline_always,
@@ -40,6 +40,7 @@ use std::cell::{Cell, RefCell};
 /// Pixels per packet.
 pub const LANES: usize = 8;
 
+mod bounce;
 #[cfg(test)]
 mod lane_tests;
 mod lanes;
@@ -169,7 +170,7 @@ impl Packet<'_, '_> {
 
     /// What `f` returns, given a `Motion` for lane `i` (lent the scratch
     /// buffer) whose cells and segments then go to the lane's in a tracked frame:
-    /// the scalar path's shading of one lane.
+    /// the scalar path's tracing of one lane.
     pub(crate) fn in_lane(&self, i: usize, f: impl FnOnce(&mut Motion) -> Vec3) -> Vec3 {
         let mut motion = Motion::with(self.motion, self.scratch.take());
         let c = f(&mut motion);
@@ -203,9 +204,9 @@ impl Packet<'_, '_> {
 
     /// Traces pixels `x0..x0 + 8` of row `y` at their centres into `out` (8 RGBA
     /// pixels) where the nearest hit is `floor` (`others`: the other objects that
-    /// can be met there, first by the lanes they stop, then shaded by the
-    /// scalar `shade`): a bit per lane written, all or none. When any lane's ray
-    /// misses the floor, all are left for the scalar path.
+    /// can be met there, and are traced on from there in the lanes they stop):
+    /// a bit per lane written, all or none. When any lane's ray misses the
+    /// floor, all are left for the scalar path.
     pub(crate) fn floor(
         &self,
         floor: &Floor<'_>,
@@ -287,7 +288,7 @@ impl Packet<'_, '_> {
         }
         // closest_among, after the plane: each other candidate through its box
         // with the nearest hit so far as the limit. Lanes that meet one first
-        // are shaded by the scalar `shade` (`front_lanes`).
+        // are traced on from there (`bounce_lanes`).
         let (front, which) = if others.is_empty() {
             (0, k(0.0))
         } else {
@@ -323,17 +324,17 @@ impl Packet<'_, '_> {
         let mut color = if on_floor == 0 {
             splat3(s, Vec3::ZERO)
         } else {
-            self.shade_lanes(s, lanes::Met::Floor(floor), (x0, y), on_floor, &hit)
+            self.shade_lanes(s, floor, (x0, y), on_floor, &hit)
         };
         if front != 0 {
-            let eye = splat3(s, c.origin);
-            let ray = objects::Bounce {
-                origin: &eye,
-                d: &d,
+            let ray = bounce::Bounce {
+                origin: splat3(s, c.origin),
+                d,
                 depth: 0,
-                weight: 1.0,
+                weight: k(1.0),
             };
-            color = self.objects_lanes(s, (x0, y, front), &ray, which, color);
+            let cradle = self.bounce_lanes(s, ray, front, Some((0, which)));
+            color = vec::select3::<S>(s.mask(front), &cradle, &color);
         }
         let color = store3::<S>(&color);
         self.colors.set([color.x, color.y, color.z]);

@@ -206,7 +206,7 @@ fn checker_lanes<S: Simd>(s: S, floor: &super::Floor<'_>, x: &F8, z: &F8) -> V8 
         y: s.splat(0.0),
         z: s.load(z),
     };
-    super::store3::<S>(&super::Packet::surface_lanes(s, floor, &point))
+    super::store3::<S>(&super::Packet::surface_lanes(s, floor.material, &point))
 }
 
 #[test]

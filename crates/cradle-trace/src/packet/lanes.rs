@@ -1,30 +1,30 @@
-//! The packet's shading, lane by lane (`shade` at depth 0 for floor hits): the
-//! lights, the shadow tests of a tile no caster can shadow, and the mirror rays of
-//! a tile with only planes to meet, for all lanes at once in lane build `S`; the
-//! rest through the scalar queries, one lane at a time. Each line mirrors the
-//! scalar expression in its comment.
+//! The packet's shading over the lanes, in lane build `S`: `shade` at depth 0
+//! of the floor lanes (their checker, lights, shadow rays by the tile's bits or
+//! the footprint cells, and mirror rays through the tile's list), and the
+//! lights and shadow rays of what a bounce met (`local_lanes`). Each line
+//! mirrors the scalar expression in its comment.
 
 #![expect(
     clippy::inline_always,
     reason = "the lane code is inlined into each entry point, so the AVX2 one compiles it for AVX2"
 )]
 
-use super::objects::Bounce;
+use super::bounce::Bounce;
 use super::occlusion::{box8, hit8, recip};
-use super::{F8, Floor, L3, LANES, Packet, Surface, V8, f8, lanes, load3, splat3, store3};
+use super::{F8, Floor, L3, LANES, Packet, Surface, V8, f8, lanes, splat3, store3};
 use crate::geometry::{Ray, T_MIN};
 use crate::scene::{Light, Material, Shape};
-use crate::shade::{BAILOUT, base_color, powi, reflect, whole};
+use crate::shade::{BAILOUT, base_color, powi, whole};
 use crate::simd::Simd;
-use crate::tiles::Tiles;
 use glam::Vec3;
 
 /// Below this in magnitude, floored values, the sum of two (below 2^23) and
 /// its parity are exact in `f32`.
 const SMALL: f32 = 4_194_304.0; // 2^22
 
-/// What the lanes to shade met: the packet's floor, or one bounded object
-/// (with a plain colour), met from outside in the lanes of `outside`.
+/// What the lanes to shade met: the packet's floor seen from the eye (depth
+/// 0, with its tile's shadow bits), or object `object` at any depth (a
+/// plane or not), met from outside in the lanes of `outside`.
 #[derive(Clone, Copy)]
 pub(super) enum Met<'m> {
     Floor(&'m Floor<'m>),
@@ -32,8 +32,7 @@ pub(super) enum Met<'m> {
         object: usize,
         material: &'m Material,
         outside: u8,
-        /// The bounce the lanes' rays are, and their path weight.
-        bounce: (u32, f32),
+        plane: bool,
     },
 }
 
@@ -45,23 +44,37 @@ impl Met<'_> {
             Met::Object { material, .. } => material,
         }
     }
-
-    /// The bounce the lanes' rays are, and their path weight (the floor's: the
-    /// eye's rays).
-    #[inline(always)]
-    fn bounce(&self) -> (u32, f32) {
-        match *self {
-            Met::Floor(_) => (0, 1.0),
-            Met::Object { bounce, .. } => bounce,
-        }
-    }
 }
 
 impl Packet<'_, '_> {
-    /// `shade` at depth 0 of what the lanes met (`met`), lane by lane, at
-    /// `hit`; `on` the lanes to shade (a bit each).
+    /// `shade` at depth 0 of the floor lanes `on` (a bit each) at `hit`: what
+    /// [`Self::local_lanes`] gives, blended with what the mirror rays bring.
     #[inline(always)]
     pub(super) fn shade_lanes<S: Simd>(
+        &self,
+        s: S,
+        floor: &Floor<'_>,
+        (x0, y): (u32, u32),
+        on: u8,
+        hit: &Surface<S::F>,
+    ) -> L3<S::F> {
+        let mut color = self.local_lanes(s, Met::Floor(floor), (x0, y), on, hit);
+        let r = floor.material.reflective;
+        // weight * r * bound, at weight 1.
+        if r > 0.0 && 0 < self.p.scene.max_depth && r * self.bound >= BAILOUT {
+            let refl = self.mirrors(s, floor, (x0, y, on), hit, r);
+            // color = color * (1.0 - r) + reflected * r
+            let k = |v: f32| s.splat(v);
+            color = color.scale(k(1.0 - r)).add(&refl.scale(k(r)));
+        }
+        color
+    }
+
+    /// `shade`'s lights of what the lanes `on` met (`met`) at `hit`, before
+    /// any reflection: ambient, Lambert and Phong terms, each light's shadow
+    /// rays traced over the lanes.
+    #[inline(always)]
+    pub(super) fn local_lanes<S: Simd>(
         &self,
         s: S,
         met: Met<'_>,
@@ -78,12 +91,7 @@ impl Packet<'_, '_> {
         let p = self.p;
         let m = met.material();
         let k = |v: f32| s.splat(v);
-        let tile = Some((self.tiles, x0, y));
-        let b = match met {
-            Met::Floor(floor) => Self::surface_lanes(s, floor, point),
-            // A plain colour (a checker is left to the scalar path).
-            Met::Object { material, .. } => splat3(s, material.color),
-        };
+        let b = Self::surface_lanes(s, m, point);
         let mut color = splat3(s, Vec3::ZERO);
         for (li, light) in p.scene.lights.iter().enumerate() {
             let (to_light, dist, lc) = match *light {
@@ -120,6 +128,11 @@ impl Packet<'_, '_> {
             let rays = (start, &to_light, dist);
             let blocked = match met {
                 Met::Floor(floor) => self.shadows(s, floor, (x0, y, li), rays, want),
+                Met::Object {
+                    object,
+                    plane: true,
+                    ..
+                } => s.mask(self.occluded_lanes(s, (object, li), (start, &to_light), dist, traced)),
                 Met::Object {
                     object, outside, ..
                 } => s.mask(self.object_shadows(s, (object, li, outside), rays, traced)),
@@ -162,21 +175,6 @@ impl Packet<'_, '_> {
                 }
             }
         }
-        let r = m.reflective;
-        let (depth, weight) = met.bounce();
-        if r > 0.0 && depth < p.scene.max_depth && weight * r * self.bound >= BAILOUT {
-            let refl = match met {
-                Met::Floor(floor) => self.mirrors(s, floor, (x0, y, on), hit, r, tile),
-                Met::Object {
-                    object, outside, ..
-                } => {
-                    let from = (object, outside, depth);
-                    self.object_mirrors(s, (x0, y, on), from, hit, weight * r)
-                }
-            };
-            // color = color * (1.0 - r) + reflected * r
-            color = color.scale(k(1.0 - r)).add(&refl.scale(k(r)));
-        }
         color
     }
 
@@ -198,8 +196,7 @@ impl Packet<'_, '_> {
     /// parity are exact in `f32`; elsewhere (far away, or NaN) each lane takes
     /// `base_color` itself.
     #[inline(always)]
-    pub(super) fn surface_lanes<S: Simd>(s: S, floor: &Floor<'_>, point: &L3<S::F>) -> L3<S::F> {
-        let m = floor.material;
+    pub(super) fn surface_lanes<S: Simd>(s: S, m: &Material, point: &L3<S::F>) -> L3<S::F> {
         let Some((other, size)) = m.checker else {
             return splat3(s, m.color);
         };
@@ -271,9 +268,10 @@ impl Packet<'_, '_> {
     }
 
     /// Per lane, the radiance the floor's mirror rays bring back (`reflect` at
-    /// depth 1 with weight `r`): lanes whose rays meet none of the tile's mirror
-    /// candidates see the background, found for all lanes at once; the others
-    /// go through `reflect`.
+    /// depth 1 with weight `r`): the nearest hit among the tile's mirror
+    /// candidates, found over the lanes, then traced on over the lanes
+    /// ([`Self::bounce_lanes`]). A packet whose lanes all meet nothing takes the
+    /// background at once.
     #[inline(always)]
     fn mirrors<S: Simd>(
         &self,
@@ -282,7 +280,6 @@ impl Packet<'_, '_> {
         (x0, y, on_floor): (u32, u32, u8),
         Surface { d, start, nn, .. }: &Surface<S::F>,
         r: f32,
-        tile: Option<(&Tiles, u32, u32)>,
     ) -> L3<S::F> {
         // dir - 2.0 * dir.dot(n) * n
         let dir = d.sub(&nn.scale(s.splat(2.0) * d.dot(nn)));
@@ -292,7 +289,7 @@ impl Packet<'_, '_> {
         // nearer (so the first of equally near ones). Lanes that meet none see
         // the background.
         let mut missed = 0u8;
-        let mut nearest = None;
+        let mut found = None;
         if let Some(list) = self.tiles.mirror_at(floor.object, x0, y) {
             let inf = s.splat(f32::INFINITY);
             let inv = recip(s, &dir);
@@ -312,47 +309,20 @@ impl Packet<'_, '_> {
                 which = S::select(take, s.splat(k as f32), which);
             }
             missed = !S::bits(S::lt(best, inf));
-            nearest = Some(which);
+            found = Some((missed, which));
         }
         if on_floor & !missed == 0 && self.motion.is_none() {
             // Every lane sees the background, and there is nothing to note.
             return splat3(s, self.p.scene.background);
         }
-        let (start_a, dir_a) = (store3::<S>(start), store3::<S>(&dir));
-        let bg = splat3(s, self.p.scene.background);
-        if self.motion.is_some() {
-            // `reflect` would find nothing and note the ray to infinity.
-            for i in (0..LANES).filter(|i| on_floor & missed >> i & 1 != 0) {
-                let mirror = Ray {
-                    origin: start_a.lane(i),
-                    dir: dir_a.lane(i),
-                };
-                self.note(i, &mirror, f32::INFINITY);
-            }
-        }
-        let met = on_floor & !missed;
-        if let Some(which) = nearest {
-            // `reflect` through the tile's list: the object found above.
-            let bounce = Bounce {
-                origin: start,
-                d: &dir,
-                depth: 1,
-                weight: r,
-            };
-            return self.objects_lanes(s, (x0, y, met), &bounce, which, bg);
-        }
-        let mut out = store3::<S>(&bg);
-        for i in (0..LANES).filter(|i| met >> i & 1 != 0) {
-            let mirror = Ray {
-                origin: start_a.lane(i),
-                dir: dir_a.lane(i),
-            };
-            let (p, b) = (self.p, self.bound);
-            let c = self.in_lane(i, |motion| {
-                reflect(p, &mirror, (floor.object, false), 1, r, b, motion, tile)
-            });
-            (out.x[i], out.y[i], out.z[i]) = (c.x, c.y, c.z);
-        }
-        load3(s, &out)
+        // `reflect` through the tile's list: the object found above; without
+        // one, `closest` (the nearest of all, the same hit).
+        let mirror = Bounce {
+            origin: *start,
+            d: dir,
+            depth: 1,
+            weight: s.splat(r),
+        };
+        self.bounce_lanes(s, mirror, on_floor, found)
     }
 }

@@ -118,6 +118,16 @@ pub(super) fn splat3<S: Simd>(s: S, v: Vec3) -> L3<S::F> {
     }
 }
 
+/// `a` in the lanes of `m`, `b` in the others.
+#[inline(always)]
+pub(super) fn select3<S: Simd>(m: S::M, a: &L3<S::F>, b: &L3<S::F>) -> L3<S::F> {
+    L3 {
+        x: S::select(m, a.x, b.x),
+        y: S::select(m, a.y, b.y),
+        z: S::select(m, a.z, b.z),
+    }
+}
+
 /// The arrays as lanes.
 #[inline(always)]
 pub(super) fn load3<S: Simd>(s: S, v: &V8) -> L3<S::F> {

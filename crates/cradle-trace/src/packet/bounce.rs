@@ -1,0 +1,236 @@
+//! The packet's rays past the floor's own shading, over the lanes: the eye's
+//! rays that meet the cradle before the floor, and the floor's mirror rays.
+//! Level by level (one bounce each) instead of `shade`'s recursion: each
+//! level finds every lane's nearest hit as `closest` does, groups the lanes by
+//! the object met, shades each group's lights and shadows over the lanes
+//! (`local_lanes`) and makes the mirror rays of the next level for the lanes
+//! that reflect. Then the levels are blended from the deepest up,
+//! `color * (1 - r) + reflected * r` per lane, as the recursion returns.
+//!
+//! Every lane starts its shading from the scalar hit test of the object it met
+//! (the same `t` as the lanes', and the normal). A lane whose scalar test were
+//! to disagree is traced by the scalar `trace` instead.
+
+#![expect(
+    clippy::inline_always,
+    reason = "the lane code is inlined into each entry point, so the AVX2 one compiles it for AVX2"
+)]
+
+use super::lanes::Met;
+use super::occlusion::{box8, hit8, recip};
+use super::vec::select3;
+use super::{L3, LANES, Packet, Surface, V8, load3, splat3, store3};
+use crate::geometry::Ray;
+use crate::prepared::Hit;
+use crate::scene::Shape;
+use crate::shade::{BAILOUT, SURFACE_OFFSET, trace};
+use crate::simd::Simd;
+use glam::Vec3;
+
+/// Levels a packet's rays can pass through: depths 0 to 16 (the most
+/// `max_depth` allows).
+const LEVELS: usize = 17;
+
+/// The lanes' rays: from `origin` along `d`, bounce `depth`, path weight
+/// `weight` per lane (the eye's rays: 0 and 1).
+#[derive(Clone, Copy)]
+pub(super) struct Bounce<F> {
+    pub(super) origin: L3<F>,
+    pub(super) d: L3<F>,
+    pub(super) depth: u32,
+    pub(super) weight: F,
+}
+
+/// One level's result per lane: the local colour, the reflectivity of what
+/// was met, and the lanes that reflect (bits).
+type Level<F> = (L3<F>, F, u8);
+
+impl Packet<'_, '_> {
+    /// Per lane, the radiance of the rays `first` of the lanes of `live`
+    /// (`shade` of their nearest hit; other lanes: anything). `found`: their
+    /// nearest hits where already known, the lanes that meet nothing and the
+    /// object per lane (as `f32`).
+    #[inline(always)]
+    pub(super) fn bounce_lanes<S: Simd>(
+        &self,
+        s: S,
+        first: Bounce<S::F>,
+        live: u8,
+        found: Option<(u8, S::F)>,
+    ) -> L3<S::F> {
+        let zero = splat3(s, Vec3::ZERO);
+        let mut levels: [Level<S::F>; LEVELS] = [(zero, s.splat(0.0), 0); LEVELS];
+        let mut n = 0;
+        let (mut ray, mut live, mut found) = (first, live, found);
+        loop {
+            let (missed, which) = match found.take() {
+                Some(f) => f,
+                None => self.nearest_all(s, &ray, live),
+            };
+            let (level, next) = self.level(s, &ray, live & !missed, live & missed, which);
+            levels[n] = level;
+            n += 1;
+            if level.2 == 0 || n == LEVELS {
+                break;
+            }
+            (ray, live) = (next, level.2);
+        }
+        let mut acc = levels[n - 1].0;
+        for &(c, r, m) in levels[..n - 1].iter().rev() {
+            // color * (1.0 - r) + reflected * r
+            let blended = c.scale(s.splat(1.0) - r).add(&acc.scale(r));
+            acc = select3::<S>(s.mask(m), &blended, &c);
+        }
+        acc
+    }
+
+    /// One level: the lanes of `hitting` met object `which` (per lane), those
+    /// of `missed` nothing. Their local colours, reflectivities and the lanes
+    /// that reflect, and the mirror rays of those.
+    #[inline(always)]
+    fn level<S: Simd>(
+        &self,
+        s: S,
+        ray: &Bounce<S::F>,
+        hitting: u8,
+        missed: u8,
+        which: S::F,
+    ) -> (Level<S::F>, Bounce<S::F>) {
+        let p = self.p;
+        let (origin, dir, which) = (
+            store3::<S>(&ray.origin),
+            store3::<S>(&ray.d),
+            S::store(which),
+        );
+        let lane_ray = |i: usize| Ray {
+            origin: origin.lane(i),
+            dir: dir.lane(i),
+        };
+        if self.motion.is_some() {
+            // `shade` of no hit notes the ray to infinity.
+            for i in (0..LANES).filter(|i| missed >> i & 1 != 0) {
+                self.note(i, &lane_ray(i), f32::INFINITY);
+            }
+        }
+        let mut color = splat3(s, p.scene.background);
+        let (mut reflectivity, mut reflect) = (s.splat(0.0), 0u8);
+        let mut next = Bounce {
+            origin: color,
+            d: color,
+            depth: ray.depth + 1,
+            weight: s.splat(0.0),
+        };
+        let mut scalar = (0u8, V8::ZERO);
+        let mut todo = hitting;
+        while todo != 0 {
+            let k = which[todo.trailing_zeros() as usize] as usize;
+            let mut group = 0u8;
+            for (i, &w) in which.iter().enumerate() {
+                if w as usize == k {
+                    group |= 1 << i;
+                }
+            }
+            group &= todo;
+            todo &= !group;
+            let (mut t, mut n, mut outside) = ([0.0; LANES], V8::ZERO, 0u8);
+            let members = group;
+            for i in (0..LANES).filter(|i| members >> i & 1 != 0) {
+                let r = lane_ray(i);
+                if let Some((tt, nn)) = p.hit_object(k, &r) {
+                    let h = Hit::facing(&r, tt, k, nn);
+                    t[i] = h.t;
+                    (n.x[i], n.y[i], n.z[i]) = (h.normal.x, h.normal.y, h.normal.z);
+                    outside |= u8::from(h.outside) << i;
+                    if self.motion.is_some() {
+                        // `shade` notes its ray up to the hit.
+                        self.note(i, &r, h.t);
+                    }
+                } else {
+                    // Not met by the scalar test after all: the scalar path.
+                    let w = S::store(ray.weight)[i];
+                    let (d, b) = (ray.depth, self.bound);
+                    let c = self.in_lane(i, |motion| trace(p, &r, d, w, b, motion));
+                    (scalar.1.x[i], scalar.1.y[i], scalar.1.z[i]) = (c.x, c.y, c.z);
+                    scalar.0 |= 1 << i;
+                    group &= !(1 << i);
+                }
+            }
+            if group == 0 {
+                continue;
+            }
+            let nn = load3(s, &n);
+            // point = ray.at(t): origin + dir * t; start = point + n * SURFACE_OFFSET
+            let point = ray.origin.add(&ray.d.scale(s.load(&t)));
+            let start = point.add(&nn.scale(s.splat(SURFACE_OFFSET)));
+            let object = &p.scene.objects[k];
+            let met = Met::Object {
+                object: k,
+                material: &object.material,
+                outside,
+                plane: matches!(object.shape, Shape::Plane { .. }),
+            };
+            let hit = Surface {
+                d: ray.d,
+                point,
+                start,
+                nn,
+            };
+            let here = self.local_lanes(s, met, (0, 0), group, &hit);
+            color = select3::<S>(s.mask(group), &here, &color);
+            let r = object.material.reflective;
+            if r > 0.0 && ray.depth < p.scene.max_depth {
+                // weight * r * bound >= BAILOUT
+                let w = ray.weight * s.splat(r);
+                let go = group & S::bits(S::le(s.splat(BAILOUT), w * s.splat(self.bound)));
+                if go != 0 {
+                    let m = s.mask(go);
+                    // dir - 2.0 * dir.dot(n) * n
+                    let d = ray.d.sub(&nn.scale(s.splat(2.0) * ray.d.dot(&nn)));
+                    next.origin = select3::<S>(m, &start, &next.origin);
+                    next.d = select3::<S>(m, &d, &next.d);
+                    next.weight = S::select(m, w, next.weight);
+                    reflectivity = S::select(m, s.splat(r), reflectivity);
+                    reflect |= go;
+                }
+            }
+        }
+        if scalar.0 != 0 {
+            color = select3::<S>(s.mask(scalar.0), &load3(s, &scalar.1), &color);
+        }
+        ((color, reflectivity, reflect), next)
+    }
+
+    /// Per lane of `live`, the nearest hit of its ray as `closest` finds it
+    /// (the planes, then inside the box around them the bounded objects in
+    /// order, each box tested with the nearest hit so far as its limit, a hit
+    /// taken only where nearer): the lanes that meet nothing (bits), and the
+    /// object per lane (as `f32`).
+    #[inline(always)]
+    fn nearest_all<S: Simd>(&self, s: S, ray: &Bounce<S::F>, live: u8) -> (u8, S::F) {
+        let p = self.p;
+        let inf = s.splat(f32::INFINITY);
+        let (mut best, mut which) = (inf, s.splat(0.0));
+        for &k in p.planes() {
+            let t = self.plane_hits(s, k, &ray.origin, &ray.d);
+            let take = S::lt(t, best);
+            best = S::select(take, t, best);
+            which = S::select(take, s.splat(k as f32), which);
+        }
+        let inv = recip(s, &ray.d);
+        let within = live & S::bits(box8(s, &p.group, &ray.origin, &inv, inf));
+        if within != 0 {
+            let within = s.mask(within);
+            for &(k, ref b) in &p.bounded {
+                let inside = within & box8(s, b, &ray.origin, &inv, best);
+                if S::bits(inside) == 0 {
+                    continue;
+                }
+                let h = hit8(s, p.geom(k), &ray.origin, &ray.d);
+                let take = inside & S::lt(h, best);
+                best = S::select(take, h, best);
+                which = S::select(take, s.splat(k as f32), which);
+            }
+        }
+        (!S::bits(S::lt(best, inf)), which)
+    }
+}
