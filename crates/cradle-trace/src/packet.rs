@@ -32,7 +32,7 @@ use super::scene::{Material, Shape};
 use super::shade::SURFACE_OFFSET;
 #[cfg(target_arch = "x86_64")]
 use super::simd::Avx2;
-use super::simd::{Portable, Simd};
+use super::simd::Portable;
 use super::tiles::Tiles;
 use glam::Vec3;
 use std::cell::{Cell, RefCell};
@@ -254,7 +254,7 @@ impl Packet<'_, '_> {
     /// The packet's lanes in lane build `S`: the lanes written (a bit each) and
     /// their linear colours, also kept in `colors`.
     #[inline(always)]
-    fn floor_lanes<S: Simd>(
+    fn floor_lanes<S: bounce::Bounces>(
         &self,
         s: S,
         floor: &Floor<'_>,
@@ -288,7 +288,7 @@ impl Packet<'_, '_> {
         }
         // closest_among, after the plane: each other candidate through its box
         // with the nearest hit so far as the limit. Lanes that meet one first
-        // are traced on from there (`bounce_lanes`).
+        // are traced on from there (`bounce`).
         let (front, which) = if others.is_empty() {
             (0, k(0.0))
         } else {
@@ -333,7 +333,7 @@ impl Packet<'_, '_> {
                 depth: 0,
                 weight: k(1.0),
             };
-            let cradle = self.bounce_lanes(s, ray, front, Some((0, which)));
+            let cradle = self.bounce(s, &ray, front, Some((0, which)));
             color = vec::select3::<S>(s.mask(front), &cradle, &color);
         }
         let color = store3::<S>(&color);

@@ -7,9 +7,10 @@
 //! that reflect. Then the levels are blended from the deepest up,
 //! `color * (1 - r) + reflected * r` per lane, as the recursion returns.
 //!
-//! Every lane starts its shading from the scalar hit test of the object it met
-//! (the same `t` as the lanes', and the normal). A lane whose scalar test were
-//! to disagree is traced by the scalar `trace` instead.
+//! Each group starts its shading from the object's hit test over the lanes
+//! with its normal (`hit_normal`, `Prepared::hit_object` per lane). A lane that
+//! test were not to meet (it met it when the nearest was found) is traced by the
+//! scalar `trace` instead.
 
 #![expect(
     clippy::inline_always,
@@ -17,14 +18,15 @@
 )]
 
 use super::lanes::Met;
-use super::occlusion::{box8, hit8, recip};
+use super::occlusion::{box8, hit_normal, hit8, recip};
 use super::vec::select3;
-use super::{L3, LANES, Packet, Surface, V8, load3, splat3, store3};
+use super::{F8, L3, LANES, Packet, Surface, V8, load3, splat3, store3};
 use crate::geometry::Ray;
-use crate::prepared::Hit;
 use crate::scene::Shape;
 use crate::shade::{BAILOUT, SURFACE_OFFSET, trace};
-use crate::simd::Simd;
+#[cfg(target_arch = "x86_64")]
+use crate::simd::Avx2;
+use crate::simd::{Portable, Simd};
 use glam::Vec3;
 
 /// Levels a packet's rays can pass through: depths 0 to 16 (the most
@@ -45,13 +47,101 @@ pub(super) struct Bounce<F> {
 /// was met, and the lanes that reflect (bits).
 type Level<F> = (L3<F>, F, u8);
 
+/// [`Bounce`] as arrays, to pass to a function of its own.
+pub(super) struct Bounce8 {
+    origin: V8,
+    d: V8,
+    depth: u32,
+    weight: F8,
+}
+
+/// A lane build with its own compiled copy of [`Packet::bounce_lanes`]: one
+/// function per build, called from the floor's kernel and its mirrors, not
+/// inlined into each (which made the crate slow to compile). The AVX2 copy is
+/// compiled for AVX2. Lane values cross the call as arrays.
+pub(super) trait Bounces: Simd {
+    /// [`Packet::bounce_lanes`] of the rays `first`.
+    fn bounce(self, pk: &Packet<'_, '_>, first: &Bounce8, live: u8, found: Option<(u8, F8)>) -> V8;
+}
+
+impl Bounces for Portable {
+    #[inline(never)]
+    fn bounce(self, pk: &Packet<'_, '_>, first: &Bounce8, live: u8, found: Option<(u8, F8)>) -> V8 {
+        pk.bounce_arrays(self, first, live, found)
+    }
+}
+
+#[cfg(target_arch = "x86_64")]
+impl Bounces for Avx2 {
+    #[inline(never)]
+    fn bounce(self, pk: &Packet<'_, '_>, first: &Bounce8, live: u8, found: Option<(u8, F8)>) -> V8 {
+        // SAFETY: the token proves the CPU has AVX2.
+        #[expect(unsafe_code, reason = "the call into the AVX2 build")]
+        unsafe {
+            bounce_avx2(self, pk, first, live, found)
+        }
+    }
+}
+
+/// [`Packet::bounce_lanes`] compiled for AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn bounce_avx2(
+    s: Avx2,
+    pk: &Packet<'_, '_>,
+    first: &Bounce8,
+    live: u8,
+    found: Option<(u8, F8)>,
+) -> V8 {
+    pk.bounce_arrays(s, first, live, found)
+}
+
 impl Packet<'_, '_> {
+    /// [`Self::bounce_lanes`] through build `S`'s own copy.
+    #[inline(always)]
+    pub(super) fn bounce<S: Bounces>(
+        &self,
+        s: S,
+        first: &Bounce<S::F>,
+        live: u8,
+        found: Option<(u8, S::F)>,
+    ) -> L3<S::F> {
+        let arrays = Bounce8 {
+            origin: store3::<S>(&first.origin),
+            d: store3::<S>(&first.d),
+            depth: first.depth,
+            weight: S::store(first.weight),
+        };
+        // (No closure here: one left as a call is not compiled for AVX2.)
+        let mut known = None;
+        if let Some((missed, which)) = found {
+            known = Some((missed, S::store(which)));
+        }
+        load3(s, &s.bounce(self, &arrays, live, known))
+    }
+
+    /// [`Self::bounce_lanes`] from and to arrays.
+    #[inline(always)]
+    fn bounce_arrays<S: Simd>(&self, s: S, b: &Bounce8, live: u8, found: Option<(u8, F8)>) -> V8 {
+        let first = Bounce {
+            origin: load3(s, &b.origin),
+            d: load3(s, &b.d),
+            depth: b.depth,
+            weight: s.load(&b.weight),
+        };
+        let mut known = None;
+        if let Some((missed, which)) = found {
+            known = Some((missed, s.load(&which)));
+        }
+        store3::<S>(&self.bounce_lanes(s, first, live, known))
+    }
+
     /// Per lane, the radiance of the rays `first` of the lanes of `live`
     /// (`shade` of their nearest hit; other lanes: anything). `found`: their
     /// nearest hits where already known, the lanes that meet nothing and the
     /// object per lane (as `f32`).
     #[inline(always)]
-    pub(super) fn bounce_lanes<S: Simd>(
+    fn bounce_lanes<S: Simd>(
         &self,
         s: S,
         first: Bounce<S::F>,
@@ -132,35 +222,35 @@ impl Packet<'_, '_> {
             }
             group &= todo;
             todo &= !group;
-            let (mut t, mut n, mut outside) = ([0.0; LANES], V8::ZERO, 0u8);
-            let members = group;
-            for i in (0..LANES).filter(|i| members >> i & 1 != 0) {
-                let r = lane_ray(i);
-                if let Some((tt, nn)) = p.hit_object(k, &r) {
-                    let h = Hit::facing(&r, tt, k, nn);
-                    t[i] = h.t;
-                    (n.x[i], n.y[i], n.z[i]) = (h.normal.x, h.normal.y, h.normal.z);
-                    outside |= u8::from(h.outside) << i;
-                    if self.motion.is_some() {
-                        // `shade` notes its ray up to the hit.
-                        self.note(i, &r, h.t);
-                    }
-                } else {
-                    // Not met by the scalar test after all: the scalar path.
-                    let w = S::store(ray.weight)[i];
-                    let (d, b) = (ray.depth, self.bound);
-                    let c = self.in_lane(i, |motion| trace(p, &r, d, w, b, motion));
-                    (scalar.1.x[i], scalar.1.y[i], scalar.1.z[i]) = (c.x, c.y, c.z);
-                    scalar.0 |= 1 << i;
-                    group &= !(1 << i);
+            // Object k's hit test over the lanes (the same `t`), and its normal
+            // turned to face the ray (`Hit::facing`: inside where n.dot(dir) > 0).
+            let (t, n) = hit_normal(s, p.geom(k), &ray.origin, &ray.d);
+            let inside = S::lt(s.splat(0.0), n.dot(&ray.d));
+            let nn = select3::<S>(inside, &n.neg(), &n);
+            let outside = !S::bits(inside);
+            let lost = group & !S::bits(S::lt(t, s.splat(f32::INFINITY)));
+            if self.motion.is_some() {
+                let ta = S::store(t);
+                let met = group & !lost;
+                for i in (0..LANES).filter(|i| met >> i & 1 != 0) {
+                    // `shade` notes its ray up to the hit.
+                    self.note(i, &lane_ray(i), ta[i]);
                 }
             }
+            for i in (0..LANES).filter(|i| lost >> i & 1 != 0) {
+                // Not met by the hit test after all: the scalar path.
+                let w = S::store(ray.weight)[i];
+                let (d, b) = (ray.depth, self.bound);
+                let c = self.in_lane(i, |motion| trace(p, &lane_ray(i), d, w, b, motion));
+                (scalar.1.x[i], scalar.1.y[i], scalar.1.z[i]) = (c.x, c.y, c.z);
+                scalar.0 |= 1 << i;
+            }
+            group &= !lost;
             if group == 0 {
                 continue;
             }
-            let nn = load3(s, &n);
             // point = ray.at(t): origin + dir * t; start = point + n * SURFACE_OFFSET
-            let point = ray.origin.add(&ray.d.scale(s.load(&t)));
+            let point = ray.origin.add(&ray.d.scale(t));
             let start = point.add(&nn.scale(s.splat(SURFACE_OFFSET)));
             let object = &p.scene.objects[k];
             let met = Met::Object {

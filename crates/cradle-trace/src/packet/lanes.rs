@@ -9,10 +9,10 @@
     reason = "the lane code is inlined into each entry point, so the AVX2 one compiles it for AVX2"
 )]
 
-use super::bounce::Bounce;
-use super::occlusion::{box8, hit8, recip};
+use super::bounce::{Bounce, Bounces};
+use super::occlusion::{box8, hit8, plane8, recip};
 use super::{F8, Floor, L3, LANES, Packet, Surface, V8, f8, lanes, splat3, store3};
-use crate::geometry::{Ray, T_MIN};
+use crate::geometry::Ray;
 use crate::scene::{Light, Material, Shape};
 use crate::shade::{BAILOUT, base_color, powi, whole};
 use crate::simd::Simd;
@@ -50,7 +50,7 @@ impl Packet<'_, '_> {
     /// `shade` at depth 0 of the floor lanes `on` (a bit each) at `hit`: what
     /// [`Self::local_lanes`] gives, blended with what the mirror rays bring.
     #[inline(always)]
-    pub(super) fn shade_lanes<S: Simd>(
+    pub(super) fn shade_lanes<S: Bounces>(
         &self,
         s: S,
         floor: &Floor<'_>,
@@ -92,6 +92,15 @@ impl Packet<'_, '_> {
         let m = met.material();
         let k = |v: f32| s.splat(v);
         let b = Self::surface_lanes(s, m, point);
+        let keys = match met {
+            Met::Object {
+                object,
+                outside,
+                plane: false,
+                ..
+            } => self.caster_keys::<S>(object, (outside, on), start),
+            _ => [(0, false); LANES],
+        };
         let mut color = splat3(s, Vec3::ZERO);
         for (li, light) in p.scene.lights.iter().enumerate() {
             let (to_light, dist, lc) = match *light {
@@ -133,9 +142,9 @@ impl Packet<'_, '_> {
                     plane: true,
                     ..
                 } => s.mask(self.occluded_lanes(s, (object, li), (start, &to_light), dist, traced)),
-                Met::Object {
-                    object, outside, ..
-                } => s.mask(self.object_shadows(s, (object, li, outside), rays, traced)),
+                Met::Object { object, .. } => {
+                    s.mask(self.object_shadows(s, (object, li, &keys), rays, traced))
+                }
             };
             // Skipped where lambert <= 0 or the light is blocked; else
             // color += base * light_color * lambert.
@@ -260,20 +269,16 @@ impl Packet<'_, '_> {
         let Shape::Plane { point, normal } = self.p.scene.objects[k].shape else {
             unreachable!("planes() lists planes")
         };
-        // denom = dir.dot(normal); t = (point - origin).dot(normal) / denom
-        let denom = dir.dot(&splat3(s, normal));
-        let t = splat3(s, point).sub(origin).dot(&splat3(s, normal)) / denom;
-        let hit = S::le(s.splat(1e-9), S::abs(denom)) & S::lt(s.splat(T_MIN), t);
-        S::select(hit, t, s.splat(f32::INFINITY))
+        plane8(s, (point, normal), origin, dir)
     }
 
     /// Per lane, the radiance the floor's mirror rays bring back (`reflect` at
     /// depth 1 with weight `r`): the nearest hit among the tile's mirror
     /// candidates, found over the lanes, then traced on over the lanes
-    /// ([`Self::bounce_lanes`]). A packet whose lanes all meet nothing takes the
+    /// ([`Self::bounce`]). A packet whose lanes all meet nothing takes the
     /// background at once.
     #[inline(always)]
-    fn mirrors<S: Simd>(
+    fn mirrors<S: Bounces>(
         &self,
         s: S,
         floor: &Floor<'_>,
@@ -323,6 +328,6 @@ impl Packet<'_, '_> {
             depth: 1,
             weight: s.splat(r),
         };
-        self.bounce_lanes(s, mirror, on_floor, found)
+        self.bounce(s, &mirror, on_floor, found)
     }
 }

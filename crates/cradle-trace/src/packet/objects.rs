@@ -8,7 +8,7 @@
 )]
 
 use super::occlusion::{Rays, recip};
-use super::{L3, LANES, Packet, lanes, store3};
+use super::{L3, LANES, Packet, store3};
 use crate::casters::clear_of;
 use crate::simd::Simd;
 
@@ -19,11 +19,12 @@ impl Packet<'_, '_> {
     /// planes, then the casters of the piece each lane starts from (lanes with
     /// the same list tested together), or every bounded object where there are
     /// no lists. An "any hit" answer, so the order of the tests does not matter.
+    /// `key`: each lane's piece and side ([`Self::caster_keys`]).
     #[inline(always)]
     pub(super) fn object_shadows<S: Simd>(
         &self,
         s: S,
-        (object, li, outside): (usize, usize, u8),
+        (object, li, key): (usize, usize, &[(usize, bool); LANES]),
         (start, dir, dist): (&L3<S::F>, &L3<S::F>, S::F),
         want: u8,
     ) -> u8 {
@@ -43,16 +44,6 @@ impl Packet<'_, '_> {
             dist,
         };
         let casters = p.casters(object);
-        // Per lane: its piece, and whether it starts clearly outside the object.
-        let at = store3::<S>(start);
-        let key: [(usize, bool); LANES] = lanes(|i| match casters {
-            Some(c) if todo >> i & 1 != 0 => {
-                let o = at.lane(i);
-                let clear = outside >> i & 1 != 0 && clear_of(p.geom(object), o);
-                (c.piece(o), clear)
-            }
-            _ => (0, false),
-        });
         while todo != 0 {
             let first = key[todo.trailing_zeros() as usize];
             let mut group = 0;
@@ -77,5 +68,30 @@ impl Packet<'_, '_> {
             todo &= !group;
         }
         out
+    }
+
+    /// Per lane of `on`, the piece of `object` its shadow rays start from (at
+    /// `start`) and whether they start clearly outside it, having met it from
+    /// outside (`outside`): which of the object's caster lists it takes, for
+    /// every light.
+    #[inline(always)]
+    pub(super) fn caster_keys<S: Simd>(
+        &self,
+        object: usize,
+        (outside, on): (u8, u8),
+        start: &L3<S::F>,
+    ) -> [(usize, bool); LANES] {
+        let p = self.p;
+        let Some(c) = p.casters(object) else {
+            return [(0, false); LANES];
+        };
+        let at = store3::<S>(start);
+        let mut key = [(0, false); LANES];
+        for i in (0..LANES).filter(|i| on >> i & 1 != 0) {
+            let o = at.lane(i);
+            let clear = outside >> i & 1 != 0 && clear_of(p.geom(object), o);
+            key[i] = (c.piece(o), clear);
+        }
+        key
     }
 }

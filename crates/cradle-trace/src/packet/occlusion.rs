@@ -15,11 +15,13 @@
     reason = "the lane code is inlined into each entry point, so the AVX2 one compiles it for AVX2"
 )]
 
+use super::vec::select3;
 use super::{L3, LANES, Packet, lanes, splat3};
 use crate::geometry::{Aabb, Cylinder, T_MIN};
 use crate::prepared::Geom;
 use crate::shadow::{GridView, Lookup};
 use crate::simd::Simd;
+use glam::Vec3;
 
 /// `1 / v` per component (`Vec3::recip`).
 #[inline(always)]
@@ -78,6 +80,24 @@ fn sphere<S: Simd>(s: S, (centre, radius): (glam::Vec3, f32), o: &L3<S::F>, d: &
 /// +inf could never be nearer than another).
 #[inline(always)]
 fn cylinder<S: Simd>(s: S, c: &Cylinder, o: &L3<S::F>, d: &L3<S::F>) -> S::F {
+    cylinder_parts(s, c, o, d).t
+}
+
+/// A cylinder's hit per lane ([`cylinder_parts`]).
+struct CylinderHit<F> {
+    /// Where (+inf: none).
+    t: F,
+    /// 0 the body, 1 and 2 the caps at `a` and `b`.
+    part: F,
+    /// The ray's origin and direction across the axis.
+    op: L3<F>,
+    dp: L3<F>,
+}
+
+/// [`cylinder`]'s hit per lane, with where it lies and the ray's parts across
+/// the axis (`o_perp`, `d_perp`), for the normal.
+#[inline(always)]
+fn cylinder_parts<S: Simd>(s: S, c: &Cylinder, o: &L3<S::F>, d: &L3<S::F>) -> CylinderHit<S::F> {
     let (a, b, u, len, radius) = c.parts();
     let k = |v: f32| s.splat(v);
     let uu = splat3(s, u);
@@ -94,7 +114,7 @@ fn cylinder<S: Simd>(s: S, c: &Cylinder, o: &L3<S::F>, d: &L3<S::F>) -> S::F {
     let disc = qa * (r2 - f.dot(&f));
     let miss_all = body & S::lt(disc, k(0.0));
     let root = S::sqrt(disc);
-    let mut best = k(f32::INFINITY);
+    let (mut best, mut part) = (k(f32::INFINITY), k(0.0));
     for root in [-qb - root, -qb + root] {
         let t = root / qa;
         let along = ou + t * du;
@@ -104,14 +124,63 @@ fn cylinder<S: Simd>(s: S, c: &Cylinder, o: &L3<S::F>, d: &L3<S::F>) -> S::F {
     }
     // |du| > 1e-12
     let caps = S::lt(k(1e-12), S::abs(du));
-    for (end, along) in [(a, 0.0), (b, len)] {
+    for (end, along, cap) in [(a, 0.0, 1.0), (b, len, 2.0)] {
         let t = (k(along) - ou) / du;
         // ray.at(t) - end: (origin + dir * t) - end.
         let p = o.add(&d.scale(t)).sub(&splat3(s, end));
         let take = caps & S::le(p.dot(&p), r2) & S::lt(t_min, t) & S::lt(t, best);
         best = S::select(take, t, best);
+        part = S::select(take, k(cap), part);
     }
-    S::select(miss_all, k(f32::INFINITY), best)
+    CylinderHit {
+        t: S::select(miss_all, k(f32::INFINITY), best),
+        part,
+        op,
+        dp,
+    }
+}
+
+/// Per lane, where object `g` first meets the ray beyond `T_MIN` (+inf for
+/// none) and its outward normal there: `Prepared::hit_object` (a sphere's
+/// `(ray.at(t) - centre) / radius`, a cylinder's body `(o_perp + d_perp *
+/// t).normalize()` or a cap's `-u` or `u`, a plane's normal).
+#[inline(always)]
+pub(super) fn hit_normal<S: Simd>(s: S, g: &Geom, o: &L3<S::F>, d: &L3<S::F>) -> (S::F, L3<S::F>) {
+    match *g {
+        Geom::Sphere { centre, radius } => {
+            let t = sphere(s, (centre, radius), o, d);
+            let at = o.add(&d.scale(t));
+            (t, at.sub(&splat3(s, centre)).div(s.splat(radius)))
+        }
+        Geom::Cylinder(ref c) => {
+            let CylinderHit { t, part, op, dp } = cylinder_parts(s, c, o, d);
+            let v = op.add(&dp.scale(t));
+            // normalize: v * (1 / sqrt(v.dot(v)))
+            let body = v.scale(s.splat(1.0) / S::sqrt(v.dot(&v)));
+            let u = splat3(s, c.parts().2);
+            let (cap_a, cap_b) = (S::lt(s.splat(0.5), part), S::lt(s.splat(1.5), part));
+            let n = select3::<S>(cap_a, &u.neg(), &body);
+            (t, select3::<S>(cap_b, &u, &n))
+        }
+        Geom::Plane { point, normal } => (plane8(s, (point, normal), o, d), splat3(s, normal)),
+    }
+}
+
+/// `hit_plane` per lane (+inf for a miss): `denom = dir.dot(normal)`, a miss
+/// below 1e-9 in magnitude; `t = (point - origin).dot(normal) / denom`, a hit
+/// beyond `T_MIN`.
+#[inline(always)]
+pub(super) fn plane8<S: Simd>(
+    s: S,
+    (point, normal): (Vec3, Vec3),
+    o: &L3<S::F>,
+    d: &L3<S::F>,
+) -> S::F {
+    let nv = splat3(s, normal);
+    let denom = d.dot(&nv);
+    let t = splat3(s, point).sub(o).dot(&nv) / denom;
+    let hit = S::le(s.splat(1e-9), S::abs(denom)) & S::lt(s.splat(T_MIN), t);
+    S::select(hit, t, s.splat(f32::INFINITY))
 }
 
 /// Per lane, where bounded object `g` first meets the ray beyond `T_MIN` (the
