@@ -22,12 +22,18 @@ use super::occlusion::{box8, hit_normal, hit8, recip};
 use super::vec::select3;
 use super::{F8, L3, LANES, Packet, Surface, V8, load3, splat3, store3};
 use crate::geometry::Ray;
+use crate::prepared::Hit;
 use crate::scene::Shape;
-use crate::shade::{BAILOUT, SURFACE_OFFSET, trace};
+use crate::shade::{BAILOUT, SURFACE_OFFSET, shade, trace};
 #[cfg(target_arch = "x86_64")]
 use crate::simd::Avx2;
 use crate::simd::{Portable, Simd};
+use crate::wide::WIDE_AT_MOST;
 use glam::Vec3;
+
+/// Fewer lanes than this on one object are traced one by one, by the scalar
+/// path: cheaper than the lanes for one.
+const SHARED: u32 = 2;
 
 /// Levels a packet's rays can pass through: depths 0 to 16 (the most
 /// `max_depth` allows).
@@ -94,6 +100,18 @@ fn bounce_avx2(
     found: Option<(u8, F8)>,
 ) -> V8 {
     pk.bounce_arrays(s, first, live, found)
+}
+
+/// The lanes of `among` whose object (`which`, as `f32`) is `k`.
+#[inline(always)]
+fn lanes_on(which: &F8, k: usize, among: u8) -> u8 {
+    let mut group = 0u8;
+    for (i, &w) in which.iter().enumerate() {
+        if w as usize == k {
+            group |= 1 << i;
+        }
+    }
+    group & among
 }
 
 impl Packet<'_, '_> {
@@ -214,14 +232,20 @@ impl Packet<'_, '_> {
         let mut todo = hitting;
         while todo != 0 {
             let k = which[todo.trailing_zeros() as usize] as usize;
-            let mut group = 0u8;
-            for (i, &w) in which.iter().enumerate() {
-                if w as usize == k {
-                    group |= 1 << i;
-                }
-            }
-            group &= todo;
+            let mut group = lanes_on(&which, k, todo);
             todo &= !group;
+            if group.count_ones() < SHARED {
+                // A lone lane: the scalar `shade` from its hit (or `trace`).
+                for i in (0..LANES).filter(|i| group >> i & 1 != 0) {
+                    let r = lane_ray(i);
+                    let hit = p.hit_object(k, &r).map(|(t, n)| Hit::facing(&r, t, k, n));
+                    let w = S::store(ray.weight)[i];
+                    let c = self.scalar_lane(i, &r, hit, (ray.depth, w));
+                    (scalar.1.x[i], scalar.1.y[i], scalar.1.z[i]) = (c.x, c.y, c.z);
+                    scalar.0 |= 1 << i;
+                }
+                continue;
+            }
             // Object k's hit test over the lanes (the same `t`), and its normal
             // turned to face the ray (`Hit::facing`: inside where n.dot(dir) > 0).
             let (t, n) = hit_normal(s, p.geom(k), &ray.origin, &ray.d);
@@ -240,8 +264,7 @@ impl Packet<'_, '_> {
             for i in (0..LANES).filter(|i| lost >> i & 1 != 0) {
                 // Not met by the hit test after all: the scalar path.
                 let w = S::store(ray.weight)[i];
-                let (d, b) = (ray.depth, self.bound);
-                let c = self.in_lane(i, |motion| trace(p, &lane_ray(i), d, w, b, motion));
+                let c = self.scalar_lane(i, &lane_ray(i), None, (ray.depth, w));
                 (scalar.1.x[i], scalar.1.y[i], scalar.1.z[i]) = (c.x, c.y, c.z);
                 scalar.0 |= 1 << i;
             }
@@ -290,14 +313,47 @@ impl Packet<'_, '_> {
         ((color, reflectivity, reflect), next)
     }
 
+    /// Lane `i`'s ray `r`, a bounce at `depth` with path weight `weight`, by
+    /// the scalar path: `shade` from `hit` where known, else `trace`.
+    fn scalar_lane(
+        &self,
+        i: usize,
+        r: &Ray,
+        hit: Option<Hit>,
+        (depth, weight): (u32, f32),
+    ) -> Vec3 {
+        let (p, b) = (self.p, self.bound);
+        self.in_lane(i, |motion| match hit {
+            Some(h) => shade(p, r, Some(h), depth, weight, b, motion, None),
+            None => trace(p, r, depth, weight, b, motion),
+        })
+    }
+
     /// Per lane of `live`, the nearest hit of its ray as `closest` finds it
     /// (the planes, then inside the box around them the bounded objects in
     /// order, each box tested with the nearest hit so far as its limit, a hit
     /// taken only where nearer): the lanes that meet nothing (bits), and the
     /// object per lane (as `f32`).
+    /// Beyond [`WIDE_AT_MOST`] bounded objects each lane walks the hierarchy
+    /// instead (`Prepared::closest`, the same hit).
     #[inline(always)]
     fn nearest_all<S: Simd>(&self, s: S, ray: &Bounce<S::F>, live: u8) -> (u8, S::F) {
         let p = self.p;
+        if p.bounded.len() > WIDE_AT_MOST {
+            let (origin, dir) = (store3::<S>(&ray.origin), store3::<S>(&ray.d));
+            let (mut missed, mut which) = (!live, [0.0; LANES]);
+            for i in (0..LANES).filter(|i| live >> i & 1 != 0) {
+                let r = Ray {
+                    origin: origin.lane(i),
+                    dir: dir.lane(i),
+                };
+                match p.closest(&r, f32::INFINITY) {
+                    Some(h) => which[i] = h.object as f32,
+                    None => missed |= 1 << i,
+                }
+            }
+            return (missed, s.load(&which));
+        }
         let inf = s.splat(f32::INFINITY);
         let (mut best, mut which) = (inf, s.splat(0.0));
         for &k in p.planes() {
