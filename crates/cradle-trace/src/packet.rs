@@ -79,6 +79,19 @@ fn lanes<T: Copy + Default>(mut f: impl FnMut(usize) -> T) -> [T; LANES] {
     out
 }
 
+/// The lanes of `among` (bits) whose `keys` equal `key`. (A plain loop, no
+/// closure: it inlines into the AVX2 build.)
+#[inline(always)]
+fn lanes_with<T: PartialEq>(keys: &[T; LANES], key: &T, among: u8) -> u8 {
+    let mut bits = 0u8;
+    for (i, k) in keys.iter().enumerate() {
+        if k == key {
+            bits |= 1 << i;
+        }
+    }
+    bits & among
+}
+
 impl V8 {
     const ZERO: V8 = V8 {
         x: [0.0; LANES],

@@ -20,7 +20,7 @@
 use super::lanes::Met;
 use super::occlusion::{box8, hit_normal, hit8, recip};
 use super::vec::select3;
-use super::{F8, L3, LANES, Packet, Surface, V8, load3, splat3, store3};
+use super::{F8, L3, LANES, Packet, Surface, V8, lanes_with, load3, splat3, store3};
 use crate::geometry::Ray;
 use crate::prepared::Hit;
 use crate::scene::Shape;
@@ -100,18 +100,6 @@ fn bounce_avx2(
     found: Option<(u8, F8)>,
 ) -> V8 {
     pk.bounce_arrays(s, first, live, found)
-}
-
-/// The lanes of `among` whose object (`which`, as `f32`) is `k`.
-#[inline(always)]
-fn lanes_on(which: &F8, k: usize, among: u8) -> u8 {
-    let mut group = 0u8;
-    for (i, &w) in which.iter().enumerate() {
-        if w as usize == k {
-            group |= 1 << i;
-        }
-    }
-    group & among
 }
 
 impl Packet<'_, '_> {
@@ -231,8 +219,9 @@ impl Packet<'_, '_> {
         let mut scalar = (0u8, V8::ZERO);
         let mut todo = hitting;
         while todo != 0 {
-            let k = which[todo.trailing_zeros() as usize] as usize;
-            let mut group = lanes_on(&which, k, todo);
+            let first = which[todo.trailing_zeros() as usize];
+            let k = first as usize;
+            let mut group = lanes_with(&which, &first, todo);
             todo &= !group;
             if group.count_ones() < SHARED {
                 // A lone lane: the scalar `shade` from its hit (or `trace`).

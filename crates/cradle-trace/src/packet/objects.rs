@@ -8,7 +8,7 @@
 )]
 
 use super::occlusion::{Rays, recip};
-use super::{L3, LANES, Packet, store3};
+use super::{L3, LANES, Packet, lanes_with, store3};
 use crate::casters::clear_of;
 use crate::simd::Simd;
 
@@ -46,25 +46,11 @@ impl Packet<'_, '_> {
         let casters = p.casters(object);
         while todo != 0 {
             let first = key[todo.trailing_zeros() as usize];
-            let mut group = 0;
-            for (i, &kk) in key.iter().enumerate() {
-                if kk == first {
-                    group |= 1 << i;
-                }
-            }
-            group &= todo;
-            match casters.and_then(|c| c.list(li, first.0, first.1)) {
-                Some(list) => {
-                    for k in list.items() {
-                        out |= self.blocks(s, k, &rays, group & !out);
-                    }
-                }
-                None => {
-                    for &(k, _) in &p.bounded {
-                        out |= self.blocks(s, k, &rays, group & !out);
-                    }
-                }
-            }
+            let group = lanes_with(key, &first, todo);
+            out |= match casters.and_then(|c| c.list(li, first.0, first.1)) {
+                Some(list) => self.blocked_by(s, list.items(), &rays, group & !out),
+                None => self.blocked_by(s, p.bounded.iter().map(|b| b.0), &rays, group & !out),
+            };
             todo &= !group;
         }
         out

@@ -16,7 +16,7 @@
 )]
 
 use super::vec::select3;
-use super::{L3, LANES, Packet, lanes, splat3};
+use super::{L3, LANES, Packet, lanes, lanes_with, splat3};
 use crate::geometry::{Aabb, Cylinder, T_MIN};
 use crate::prepared::Geom;
 use crate::shadow::{GridView, Lookup};
@@ -304,6 +304,23 @@ impl Packet<'_, '_> {
         inside & S::bits(blocks8(s, self.p.geom(k), start, dir, dist))
     }
 
+    /// The lanes of `live` (bits) whose rays one of the objects `ks` meets
+    /// before `dist` (an "any hit": each object tests the lanes still open).
+    #[inline(always)]
+    pub(super) fn blocked_by<S: Simd>(
+        &self,
+        s: S,
+        ks: impl Iterator<Item = usize>,
+        r: &Rays<'_, S::F>,
+        live: u8,
+    ) -> u8 {
+        let mut out = 0;
+        for k in ks {
+            out |= self.blocks(s, k, r, live & !out);
+        }
+        out
+    }
+
     /// Per lane (bits), `Prepared::occluded_by(ray, dist, footprints)` for the
     /// shadow rays from `start` along `dir` towards light `li` of floor object
     /// `plane`, for the lanes in `want` (the others answer false).
@@ -343,27 +360,14 @@ impl Packet<'_, '_> {
         };
         while todo != 0 {
             let first = at[todo.trailing_zeros() as usize];
-            let mut group = 0;
-            for (i, a) in at.iter().enumerate() {
-                if *a == first {
-                    group |= 1 << i;
-                }
-            }
-            group &= todo;
-            match fp.and_then(|f| f.list(first)) {
+            let group = lanes_with(&at, &first, todo);
+            out |= match fp.and_then(|f| f.list(first)) {
                 Some((cell, always)) => {
-                    for list in [cell, always] {
-                        for &k in list {
-                            out |= self.blocks(s, k, &rays, group & !out);
-                        }
-                    }
+                    let list = cell.iter().chain(always).copied();
+                    self.blocked_by(s, list, &rays, group & !out)
                 }
-                None => {
-                    for &(k, _) in &p.bounded {
-                        out |= self.blocks(s, k, &rays, group & !out);
-                    }
-                }
-            }
+                None => self.blocked_by(s, p.bounded.iter().map(|b| b.0), &rays, group & !out),
+            };
             todo &= !group;
         }
         out
