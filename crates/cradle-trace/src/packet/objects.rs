@@ -29,10 +29,7 @@ impl Packet<'_, '_> {
         want: u8,
     ) -> u8 {
         let p = self.p;
-        let mut out = 0;
-        for &k in p.planes() {
-            out |= want & S::bits(S::lt(self.plane_hits(s, k, start, dir), dist));
-        }
+        let mut out = self.planes_before(s, (start, dir), dist, want);
         let mut todo = want & !out;
         if todo == 0 {
             return out;

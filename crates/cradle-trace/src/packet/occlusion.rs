@@ -304,6 +304,23 @@ impl Packet<'_, '_> {
         inside & S::bits(blocks8(s, self.p.geom(k), start, dir, dist))
     }
 
+    /// The lanes of `want` (bits) whose rays from `start` along `dir` meet a
+    /// plane before `dist`.
+    #[inline(always)]
+    pub(super) fn planes_before<S: Simd>(
+        &self,
+        s: S,
+        (start, dir): (&L3<S::F>, &L3<S::F>),
+        dist: S::F,
+        want: u8,
+    ) -> u8 {
+        let mut out = 0;
+        for &k in self.p.planes() {
+            out |= want & S::bits(S::lt(self.plane_hits(s, k, start, dir), dist));
+        }
+        out
+    }
+
     /// The lanes of `live` (bits) whose rays one of the objects `ks` meets
     /// before `dist` (an "any hit": each object tests the lanes still open).
     #[inline(always)]
@@ -334,11 +351,8 @@ impl Packet<'_, '_> {
         want: u8,
     ) -> u8 {
         let p = self.p;
-        let mut out = 0;
         // The planes first: a hit before dist on any of them.
-        for &k in p.planes() {
-            out |= want & S::bits(S::lt(self.plane_hits(s, k, start, dir), dist));
-        }
+        let mut out = self.planes_before(s, (start, dir), dist, want);
         // inv = dir.recip(); the group box.
         let inv = recip(s, dir);
         let mut todo = want & !out & S::bits(box8(s, &p.group, start, &inv, dist));
