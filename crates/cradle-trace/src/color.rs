@@ -12,12 +12,31 @@ pub struct Image {
     pub rgba: Vec<u8>,
 }
 
-/// `THRESHOLDS[b]` is the linear value at which the sRGB byte becomes `b + 1`: the
-/// decoded midpoint `(b + 0.5) / 255`, computed in f64 once.
-fn thresholds() -> &'static [f32; 255] {
-    static T: std::sync::OnceLock<[f32; 255]> = std::sync::OnceLock::new();
+/// Buckets of the floats in [2^-14, 1]: 256 per octave (the top 8 bits of the
+/// mantissa), each holding at most one threshold (neighbouring thresholds are
+/// at least 0.9% apart, a bucket spans at most 0.4%).
+const BUCKET_SHIFT: u32 = 15;
+/// The bucket of 2^-14 (below every threshold, the first is 1.5e-4).
+const FIRST_BUCKET: u32 = (1.0f32 / 16384.0).to_bits() >> BUCKET_SHIFT;
+/// Buckets up to and including that of 1.0.
+const BUCKETS: usize = ((1.0f32.to_bits() >> BUCKET_SHIFT) - FIRST_BUCKET + 1) as usize;
+
+/// The thresholds, and per bucket the byte of its lowest value.
+struct Table {
+    /// The linear value at which the sRGB byte becomes `b + 1`, for `b` in
+    /// 0..255: the decoded midpoint `(b + 0.5) / 255`, computed in f64 once;
+    /// entry 255 is infinity (no byte above 255).
+    thresholds: [f32; 256],
+    low: Vec<u32>,
+}
+
+fn table() -> &'static Table {
+    static T: std::sync::OnceLock<Table> = std::sync::OnceLock::new();
     T.get_or_init(|| {
-        std::array::from_fn(|b| {
+        let thresholds: [f32; 256] = std::array::from_fn(|b| {
+            if b == 255 {
+                return f32::INFINITY;
+            }
             let s = (b as f64 + 0.5) / 255.0;
             let linear = if s <= 0.040_45 {
                 s / 12.92
@@ -25,52 +44,38 @@ fn thresholds() -> &'static [f32; 255] {
                 ((s + 0.055) / 1.055).powf(2.4)
             };
             linear as f32
-        })
+        });
+        let low = (0..BUCKETS as u32)
+            .map(|i| {
+                let lowest = f32::from_bits((FIRST_BUCKET + i) << BUCKET_SHIFT);
+                thresholds.partition_point(|&t| t <= lowest) as u32
+            })
+            .collect();
+        Table { thresholds, low }
     })
 }
 
 /// Linear [0, 1] to an sRGB byte (IEC 61966-2-1), rounded to the nearest byte and
 /// clamping out-of-range values: the count of decision points at or below the
-/// value, found by binary search instead of a `powf` per channel.
+/// value. The value's bucket gives the count at the bucket's start; one
+/// comparison with the next threshold finishes it (no `powf`, no search).
 #[must_use]
 pub fn srgb8(linear: f32) -> u8 {
-    // NaN counts as 0, like the clamp it replaces.
-    thresholds().partition_point(|&t| t <= linear) as u8
+    let t = table();
+    // NaN and negatives count as 0, values over 1 as 1 (the clamp it replaces).
+    let c = if linear > 0.0 { linear.min(1.0) } else { 0.0 };
+    let bucket = ((c.to_bits() >> BUCKET_SHIFT).saturating_sub(FIRST_BUCKET)) as usize;
+    let low = t.low[bucket];
+    (low + u32::from(t.thresholds[low as usize] <= c)) as u8
 }
 
-/// [`srgb8`] of eight values at once, for packets: the same count of decision
-/// points at or below each value, found by a binary search without branches
-/// (eight halving steps over the 255 thresholds, indices at most 254), which the
-/// compiler can run in SIMD lanes. NaN counts as 0, as there.
+/// [`srgb8`] of eight values at once, for packets (the same steps per lane).
 #[inline]
 #[must_use]
 pub fn srgb8_lanes(linear: [f32; 8]) -> [u8; 8] {
-    let t = thresholds();
-    let mut pos = [0u32; 8];
-    let mut step = 128u32;
-    while step > 0 {
-        for (p, &v) in pos.iter_mut().zip(&linear) {
-            // `*p + step - 1` <= 128 + 64 + ... + 1 - 1 = 254.
-            if t[(*p + step - 1) as usize] <= v {
-                *p += step;
-            }
-        }
-        step /= 2;
-    }
-    bytes(pos)
-}
-
-/// The low byte of each lane (each lies in 0..=255): a plain loop, inlined,
-/// where `array::map` stays a call.
-#[expect(
-    clippy::inline_always,
-    reason = "inlined into each caller, so the AVX2 one compiles it for AVX2"
-)]
-#[inline(always)]
-fn bytes(v: [u32; 8]) -> [u8; 8] {
     let mut out = [0; 8];
-    for (o, p) in out.iter_mut().zip(v) {
-        *o = p as u8;
+    for (o, v) in out.iter_mut().zip(linear) {
+        *o = srgb8(v);
     }
     out
 }
@@ -88,35 +93,42 @@ pub(crate) fn rgba8_lanes(r: [f32; 8], g: [f32; 8], b: [f32; 8]) -> [u32; 8] {
     out
 }
 
-/// [`rgba8_lanes`] with AVX2's gathers: each halving step of the search loads
-/// the eight thresholds in one instruction (the same comparisons, so the same
-/// bytes), and the channels are packed in the registers.
+/// [`rgba8_lanes`] in AVX2: per channel the same clamp (`max` with 0 takes 0 for
+/// NaN and -0), the bucket's byte and the next threshold by two gathers, one
+/// comparison; the channels are packed in the registers.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 #[inline]
 #[must_use]
 pub(crate) fn rgba8_avx2(r: &[f32; 8], g: &[f32; 8], b: &[f32; 8]) -> [u32; 8] {
     use std::arch::x86_64::{
-        __m256i, _CMP_LE_OQ, _mm256_add_epi32, _mm256_and_si256, _mm256_castps_si256,
-        _mm256_cmp_ps, _mm256_i32gather_ps, _mm256_loadu_ps, _mm256_or_si256, _mm256_set1_epi32,
-        _mm256_setzero_si256, _mm256_slli_epi32, _mm256_storeu_si256,
+        __m256i, _CMP_LE_OQ, _mm256_castps_si256, _mm256_cmp_ps, _mm256_i32gather_epi32,
+        _mm256_i32gather_ps, _mm256_loadu_ps, _mm256_max_epi32, _mm256_max_ps, _mm256_min_ps,
+        _mm256_or_si256, _mm256_set1_epi32, _mm256_set1_ps, _mm256_setzero_ps,
+        _mm256_setzero_si256, _mm256_slli_epi32, _mm256_srli_epi32, _mm256_storeu_si256,
+        _mm256_sub_epi32,
     };
-    let t = thresholds();
-    // Each lane's count of thresholds at or below its value, 0..=255.
+    let t = table();
     let count = |linear: &[f32; 8]| -> __m256i {
-        // SAFETY: loads the eight floats of `linear`; each gather reads
-        // thresholds at indices `pos + step - 1` <= 254 < 255, in bounds.
+        // SAFETY: loads the eight floats of `linear`; the bucket index lies in
+        // 0..BUCKETS (the value is clamped to [0, 1], the index to >= 0) and the
+        // bucket's byte in 0..=255, so both gathers read in bounds.
         #[expect(unsafe_code, reason = "AVX2 loads and gathers within bounds")]
         unsafe {
             let v = _mm256_loadu_ps(linear.as_ptr());
-            let mut pos = _mm256_setzero_si256();
-            for step in [128, 64, 32, 16, 8, 4, 2, 1] {
-                let idx = _mm256_add_epi32(pos, _mm256_set1_epi32(step - 1));
-                let th = _mm256_i32gather_ps::<4>(t.as_ptr(), idx);
-                let le = _mm256_castps_si256(_mm256_cmp_ps::<_CMP_LE_OQ>(th, v));
-                pos = _mm256_add_epi32(pos, _mm256_and_si256(le, _mm256_set1_epi32(step)));
-            }
-            pos
+            let c = _mm256_min_ps(_mm256_max_ps(v, _mm256_setzero_ps()), _mm256_set1_ps(1.0));
+            let bucket = _mm256_max_epi32(
+                _mm256_sub_epi32(
+                    _mm256_srli_epi32::<{ BUCKET_SHIFT as i32 }>(_mm256_castps_si256(c)),
+                    _mm256_set1_epi32(FIRST_BUCKET as i32),
+                ),
+                _mm256_setzero_si256(),
+            );
+            let low = _mm256_i32gather_epi32::<4>(t.low.as_ptr().cast(), bucket);
+            let next = _mm256_i32gather_ps::<4>(t.thresholds.as_ptr(), low);
+            // low - (-1 where next <= c)
+            let up = _mm256_castps_si256(_mm256_cmp_ps::<_CMP_LE_OQ>(next, c));
+            _mm256_sub_epi32(low, up)
         }
     };
     let (r, g, b) = (count(r), count(g), count(b));
@@ -135,12 +147,49 @@ pub(crate) fn rgba8_avx2(r: &[f32; 8], g: &[f32; 8], b: &[f32; 8]) -> [u32; 8] {
 
 #[cfg(test)]
 mod tests {
-    use super::{rgba8_lanes, srgb8};
+    use super::{BUCKET_SHIFT, BUCKETS, FIRST_BUCKET, rgba8_lanes, srgb8};
+
+    /// The definition: the count of thresholds at or below the value (NaN: 0).
+    fn by_search(linear: f32) -> u8 {
+        super::table().thresholds[..255].partition_point(|&t| t <= linear) as u8
+    }
+
+    #[test]
+    fn the_buckets_give_the_searched_byte_everywhere() {
+        // Both answers are constant between the points where one can change:
+        // the thresholds (the search) and the bucket starts (the buckets), so
+        // comparing at each such point and the float just below it compares them
+        // on every float.
+        let starts =
+            (0..=BUCKETS as u32 + 1).map(|i| f32::from_bits((FIRST_BUCKET + i) << BUCKET_SHIFT));
+        let thresholds = super::table().thresholds[..255].iter().copied();
+        for x in starts.chain(thresholds) {
+            for v in [x.next_down(), x, x.next_up()] {
+                assert_eq!(srgb8(v), by_search(v), "{v:e}");
+            }
+        }
+        for v in [
+            -1.0,
+            -0.0,
+            0.0,
+            1e-30,
+            1.0,
+            1.5,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::NAN,
+        ] {
+            assert_eq!(srgb8(v), by_search(v.max(0.0)), "{v}");
+        }
+        // The encoding's end points, and 18% grey: 1.055 * 0.18^(1/2.4) - 0.055 =
+        // 0.4614, 117.6 of 255.
+        assert_eq!((srgb8(0.0), srgb8(1.0), srgb8(0.18)), (0, 255, 118));
+    }
 
     #[test]
     fn lanes_of_pixels_hold_the_scalar_bytes() {
         // Every threshold and its neighbours, out-of-range values and NaN.
-        let mut v: Vec<f32> = super::thresholds()
+        let mut v: Vec<f32> = super::table().thresholds[..255]
             .iter()
             .flat_map(|&t| [t.next_down(), t, t.next_up()])
             .collect();
