@@ -13,6 +13,9 @@ use super::geometry::Aabb;
 use super::scene::Light;
 use glam::{Vec2, Vec3};
 
+/// A cell of the grid: column and row.
+type Cell2 = (usize, usize);
+
 /// Where the light shines from, for projecting onto the plane.
 #[derive(Debug, Clone, Copy)]
 enum Source {
@@ -64,8 +67,11 @@ pub struct Footprints {
     min: Vec2,
     inv_cell: Vec2,
     n: (usize, usize),
-    /// Per cell, object indices in query order.
-    cells: Vec<Vec<usize>>,
+    /// Per cell, object indices in query order: cell `k` holds
+    /// `items[starts[k]..starts[k + 1]]` (one flat list, built in two passes,
+    /// not a vector per cell). Empty when there is no grid.
+    starts: Vec<u32>,
+    items: Vec<usize>,
     /// Objects reaching up to the light's height or beyond: they can shadow any
     /// point, so every query tests them.
     always: Vec<usize>,
@@ -109,7 +115,8 @@ impl Footprints {
             min: Vec2::ZERO,
             inv_cell: Vec2::ZERO,
             n: (0, 0),
-            cells: Vec::new(),
+            starts: Vec::new(),
+            items: Vec::new(),
             always: Vec::new(),
         };
         let mut rects = Vec::new();
@@ -132,13 +139,33 @@ impl Footprints {
         fp.min = lo;
         fp.n = (per_axis, per_axis);
         fp.inv_cell = Vec2::splat(per_axis as f32) / size;
-        fp.cells = vec![Vec::new(); per_axis * per_axis];
-        for (i, (a, b)) in rects {
-            let (x0, y0) = fp.cell_of(a);
-            let (x1, y1) = fp.cell_of(b);
+        // Count each cell's objects, turn the counts into starts, then place
+        // the objects (each cell keeps `rects`' order, the query order).
+        let cells = per_axis * per_axis;
+        // Each object's first and last cell (x, y).
+        let spans: Vec<(usize, Cell2, Cell2)> = rects
+            .iter()
+            .map(|&(i, (a, b))| (i, fp.cell_of(a), fp.cell_of(b)))
+            .collect();
+        let mut fill = vec![0u32; cells + 1];
+        for &(_, (x0, y0), (x1, y1)) in &spans {
+            for y in y0..=y1 {
+                for slot in &mut fill[y * per_axis + x0 + 1..=y * per_axis + x1 + 1] {
+                    *slot += 1;
+                }
+            }
+        }
+        for k in 0..cells {
+            fill[k + 1] += fill[k];
+        }
+        fp.items = vec![0; fill[cells] as usize];
+        fp.starts.clone_from(&fill);
+        for &(i, (x0, y0), (x1, y1)) in &spans {
             for y in y0..=y1 {
                 for x in x0..=x1 {
-                    fp.cells[y * per_axis + x].push(i);
+                    let at = &mut fill[y * per_axis + x];
+                    fp.items[*at as usize] = i;
+                    *at += 1;
                 }
             }
         }
@@ -216,7 +243,7 @@ impl Footprints {
         if !self.always.is_empty() {
             return false;
         }
-        if self.cells.is_empty() {
+        if self.starts.is_empty() {
             return true;
         }
         let mut lo = Vec2::splat(f32::INFINITY);
@@ -247,7 +274,10 @@ impl Footprints {
         let cell = |v: f32, n: usize| (v.max(0.0) as usize).min(n - 1);
         let (x0, y0) = (cell(lo.x, self.n.0), cell(lo.y, self.n.1));
         let (x1, y1) = (cell(hi.x, self.n.0), cell(hi.y, self.n.1));
-        (y0..=y1).all(|y| (x0..=x1).all(|x| self.cells[y * self.n.0 + x].is_empty()))
+        (y0..=y1).all(|y| {
+            let row = y * self.n.0;
+            self.starts[row + x0] == self.starts[row + x1 + 1]
+        })
     }
 
     /// The objects that can block a shadow ray from `start` (a point on the lit
@@ -270,7 +300,7 @@ impl Footprints {
         let Some(q) = self.project(start) else {
             return Lookup::Unlit;
         };
-        if self.cells.is_empty() {
+        if self.starts.is_empty() {
             return Lookup::Always;
         }
         let c = (q - self.min) * self.inv_cell;
@@ -301,8 +331,14 @@ impl Footprints {
             min: self.min,
             inv_cell: self.inv_cell,
             n: self.n,
-            gridded: !self.cells.is_empty(),
+            gridded: !self.starts.is_empty(),
         }
+    }
+
+    /// The objects of cell `k`.
+    #[inline]
+    fn cell(&self, k: usize) -> &[usize] {
+        &self.items[self.starts[k] as usize..self.starts[k + 1] as usize]
     }
 
     /// The lists a [`Self::lookup`] names.
@@ -312,7 +348,7 @@ impl Footprints {
         match at {
             Lookup::Unlit => None,
             Lookup::Always => Some((&[], &self.always)),
-            Lookup::Cell(k) => Some((&self.cells[k], &self.always)),
+            Lookup::Cell(k) => Some((self.cell(k), &self.always)),
         }
     }
 }
