@@ -10,7 +10,7 @@ use super::bvh::Bvh;
 use super::geometry::Aabb;
 use super::prepared::{Geom, bounds};
 use super::scene::{Light, Shape};
-use super::wide::WideBoxes;
+use super::wide::{Chunk, WideList, push_chunks};
 use glam::Vec3;
 
 /// The bounded objects (in query order) that can block a shadow ray towards
@@ -23,12 +23,20 @@ use glam::Vec3;
 /// if its box, widened by that much, meets that segment. Ambient light casts no
 /// shadow rays: no list.
 ///
-/// With a hierarchy over `bounded` (`bvh`, items its positions), only the objects
-/// in the nodes near the segment are tested: many objects then cost O(log n) each.
-fn casters(from: Aabb, light: &Light, bounded: &[(usize, Aabb)], bvh: Option<&Bvh>) -> Vec<usize> {
+/// With a hierarchy over `bounded` (`bvh` over their boxes, items its
+/// positions), only the objects in the nodes near the segment are tested: many
+/// objects then cost O(log n) each. The casters (object, box) go to `out`.
+fn casters(
+    from: Aabb,
+    light: &Light,
+    bounded: &[(usize, Aabb)],
+    bvh: Option<(&Bvh, &[Aabb])>,
+    out: &mut Vec<(usize, Aabb)>,
+) {
+    out.clear();
     let centre = (from.min + from.max) * 0.5;
     let (dir, t_max) = match *light {
-        Light::Ambient { .. } => return Vec::new(),
+        Light::Ambient { .. } => return,
         // t in 0..=1 along the segment to the light.
         Light::Point { position, .. } => (position - centre, 1.0),
         Light::Directional { direction, .. } => (-direction, f32::INFINITY),
@@ -46,19 +54,14 @@ fn casters(from: Aabb, light: &Light, bounded: &[(usize, Aabb)], bvh: Option<&Bv
         near <= far || near.is_nan() || far.is_nan()
     };
     match bvh {
-        Some(bvh) => {
-            let boxes: Vec<Aabb> = bounded.iter().map(|&(_, b)| b).collect();
+        Some((bvh, boxes)) => {
             let mut ks = Vec::new();
-            bvh.collect(meets, &boxes, &mut ks);
+            bvh.collect(meets, boxes, &mut ks);
             // Back to query order.
             ks.sort_unstable();
-            ks.into_iter().map(|k| bounded[k].0).collect()
+            out.extend(ks.into_iter().map(|k| bounded[k]));
         }
-        None => bounded
-            .iter()
-            .filter(|(_, b)| meets(b))
-            .map(|&(i, _)| i)
-            .collect(),
+        None => out.extend(bounded.iter().filter(|(_, b)| meets(b))),
     }
 }
 
@@ -73,9 +76,15 @@ pub(crate) struct Casters {
     u: Vec3,
     len: f32,
     pieces: usize,
-    /// Per light, per piece: the objects (in query order) that can block, with
-    /// their boxes eight at a time; with the object itself, and without.
-    lists: Vec<Vec<(WideBoxes, WideBoxes)>>,
+    /// Lights (ambient ones with empty lists).
+    lights: usize,
+    /// Every list's boxes, eight at a time, one list after another.
+    chunks: Vec<Chunk>,
+    /// Per light, per piece (`light * pieces + piece`): where in `chunks` the
+    /// objects (in query order) that can block are, with the object itself
+    /// (`[0]..[1]`) and without it (`[1]..[2]`): two lists, one after the
+    /// other.
+    ranges: Vec<[u32; 3]>,
 }
 
 impl Casters {
@@ -94,7 +103,7 @@ impl Casters {
         (me, shape): (usize, &Shape),
         lights: &[Light],
         bounded: &[(usize, Aabb)],
-        bvh: Option<&Bvh>,
+        bvh: Option<(&Bvh, &[Aabb])>,
     ) -> Option<Self> {
         let (a, b, radius) = match *shape {
             Shape::Plane { .. } => return None,
@@ -126,36 +135,33 @@ impl Casters {
             .expect("cylinders are bounded")
         };
         let boxes: Vec<Aabb> = (0..pieces).map(piece_box).collect();
-        let wide = |list: Vec<usize>| {
-            WideBoxes::new(list.into_iter().map(|i| {
-                let k = bounded.partition_point(|&(j, _)| j < i);
-                (i, bounded[k].1)
-            }))
-        };
+        let mut chunks = Vec::new();
+        let mut ranges = Vec::with_capacity(lights.len() * pieces);
+        let mut found = Vec::new();
+        for l in lights {
+            for &b in &boxes {
+                casters(b, l, bounded, bvh, &mut found);
+                let all = chunks.len() as u32;
+                push_chunks(&mut chunks, found.iter().copied());
+                let others = chunks.len() as u32;
+                push_chunks(&mut chunks, found.iter().copied().filter(|&(i, _)| i != me));
+                ranges.push([all, others, chunks.len() as u32]);
+            }
+        }
         Some(Self {
             a,
             u,
             len,
             pieces,
-            lists: lights
-                .iter()
-                .map(|l| {
-                    boxes
-                        .iter()
-                        .map(|&b| {
-                            let all = casters(b, l, bounded, bvh);
-                            let others = all.iter().copied().filter(|&i| i != me).collect();
-                            (wide(all), wide(others))
-                        })
-                        .collect()
-                })
-                .collect(),
+            lights: lights.len(),
+            chunks,
+            ranges,
         })
     }
 
     /// The casters towards light `light` of a shadow ray starting at `at`, from
     /// a point met from `outside` (then without the object itself).
-    pub(crate) fn at(&self, light: usize, at: Vec3, outside: bool) -> Option<&WideBoxes> {
+    pub(crate) fn at(&self, light: usize, at: Vec3, outside: bool) -> Option<WideList<'_>> {
         self.list(light, self.piece(at), outside)
     }
 
@@ -174,9 +180,13 @@ impl Casters {
     /// The casters towards light `light` of piece `piece`, with the object
     /// itself or (`outside`) without.
     #[inline]
-    pub(crate) fn list(&self, light: usize, piece: usize, outside: bool) -> Option<&WideBoxes> {
-        let (all, others) = &self.lists.get(light)?[piece];
-        Some(if outside { others } else { all })
+    pub(crate) fn list(&self, light: usize, piece: usize, outside: bool) -> Option<WideList<'_>> {
+        if light >= self.lights {
+            return None;
+        }
+        let r = self.ranges[light * self.pieces + piece];
+        let (from, to) = if outside { (r[1], r[2]) } else { (r[0], r[1]) };
+        Some(WideList::of(&self.chunks, from as usize..to as usize))
     }
 }
 

@@ -374,7 +374,9 @@ impl<'a> Prepared<'a> {
         ) {
             (Some((cell, always)), _) => cell.iter().chain(always).any(|&i| test(i)),
             (None, Some(_)) if self.bounded.len() <= WIDE_AT_MOST => {
-                self.wide.scan(ray, inv, || t_max, |i, _, _| blocks(i))
+                self.wide
+                    .list()
+                    .scan(ray, inv, || t_max, |i, _, _| blocks(i))
             }
             (None, Some(bvh)) => bvh.traverse(
                 ray,

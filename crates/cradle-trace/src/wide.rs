@@ -30,7 +30,7 @@ const W: usize = 8;
 
 /// Up to eight boxes and the items they belong to.
 #[derive(Debug, Clone)]
-struct Chunk {
+pub(crate) struct Chunk {
     min: [[f32; W]; 3],
     max: [[f32; W]; 3],
     items: [u32; W],
@@ -42,6 +42,37 @@ struct Chunk {
 #[derive(Debug, Clone, Default)]
 pub(crate) struct WideBoxes {
     chunks: Vec<Chunk>,
+}
+
+/// A list of boxes in chunks of eight, borrowed: a [`WideBoxes`], or one of
+/// the lists [`push_chunks`] laid out one after another in a shared vector.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct WideList<'a> {
+    chunks: &'a [Chunk],
+}
+
+/// Appends the boxes of `items` (item, box), in that order, to `chunks` as
+/// whole chunks of their own: `chunks[before..after]` is then their list.
+pub(crate) fn push_chunks(chunks: &mut Vec<Chunk>, items: impl IntoIterator<Item = (usize, Aabb)>) {
+    let first = chunks.len();
+    for (n, (item, b)) in items.into_iter().enumerate() {
+        let j = n % W;
+        if j == 0 {
+            chunks.push(Chunk {
+                min: [[0.0; W]; 3],
+                max: [[0.0; W]; 3],
+                items: [0; W],
+                used: 0,
+            });
+        }
+        let c = &mut chunks[first + n / W];
+        for a in 0..3 {
+            c.min[a][j] = b.min[a];
+            c.max[a][j] = b.max[a];
+        }
+        c.items[j] = u32::try_from(item).expect("object indices fit in u32");
+        c.used |= 1 << j;
+    }
 }
 
 /// The lanes of one chunk the ray meets before `t_max`: bit `j` for lane `j`,
@@ -81,30 +112,31 @@ fn lanes_avx2(s: Avx2, c: &Chunk, o: Vec3, inv: Vec3, t_max: f32) -> u8 {
 impl WideBoxes {
     /// The boxes of `items` (item, box), in that order.
     pub(crate) fn new(items: impl IntoIterator<Item = (usize, Aabb)>) -> Self {
-        let mut chunks: Vec<Chunk> = Vec::new();
-        for (n, (item, b)) in items.into_iter().enumerate() {
-            let j = n % W;
-            if j == 0 {
-                chunks.push(Chunk {
-                    min: [[0.0; W]; 3],
-                    max: [[0.0; W]; 3],
-                    items: [0; W],
-                    used: 0,
-                });
-            }
-            let c = chunks.last_mut().expect("pushed above");
-            for a in 0..3 {
-                c.min[a][j] = b.min[a];
-                c.max[a][j] = b.max[a];
-            }
-            c.items[j] = u32::try_from(item).expect("object indices fit in u32");
-            c.used |= 1 << j;
-        }
+        let mut chunks = Vec::new();
+        push_chunks(&mut chunks, items);
         Self { chunks }
     }
 
+    /// Its boxes as a list.
+    #[inline]
+    pub(crate) fn list(&self) -> WideList<'_> {
+        WideList {
+            chunks: &self.chunks,
+        }
+    }
+}
+
+impl<'a> WideList<'a> {
+    /// The list of `chunks[range]`, as [`push_chunks`] laid it out.
+    #[inline]
+    pub(crate) fn of(chunks: &'a [Chunk], range: std::ops::Range<usize>) -> Self {
+        Self {
+            chunks: &chunks[range],
+        }
+    }
+
     /// The items, in order.
-    pub(crate) fn items(&self) -> impl Iterator<Item = usize> + '_ {
+    pub(crate) fn items(self) -> impl Iterator<Item = usize> + 'a {
         self.chunks.iter().flat_map(|c| {
             (0..W)
                 .filter(|&j| c.used >> j & 1 != 0)
@@ -118,7 +150,7 @@ impl WideBoxes {
     /// Stops and returns true as soon as `visit` does.
     #[inline]
     pub(crate) fn scan(
-        &self,
+        self,
         ray: &Ray,
         inv: Vec3,
         limit: impl Fn() -> f32,
@@ -126,7 +158,7 @@ impl WideBoxes {
     ) -> bool {
         #[cfg(target_arch = "x86_64")]
         let wide = Avx2::detect();
-        for c in &self.chunks {
+        for c in self.chunks {
             let t_max = limit();
             #[cfg(target_arch = "x86_64")]
             let mut bits = match wide {
@@ -176,7 +208,7 @@ impl Prepared<'_> {
         }
         let inv = ray.dir.recip();
         if self.group.hit(ray, inv, t_max) {
-            self.wide.scan(ray, inv, limit, |i, b, chunk| {
+            self.wide.list().scan(ray, inv, limit, |i, b, chunk| {
                 // A nearer hit found within this chunk: the box again, with it.
                 let now = limit();
                 if now >= chunk || b.hit(ray, inv, now) {

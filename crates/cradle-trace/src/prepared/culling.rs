@@ -54,7 +54,10 @@ impl Prepared<'_> {
             .objects
             .iter()
             .enumerate()
-            .map(|(i, o)| Casters::new((i, &o.shape), &scene.lights, &self.bounded, bvh.as_ref()))
+            .map(|(i, o)| {
+                let bvh = bvh.as_ref().map(|b| (b, &boxes[..]));
+                Casters::new((i, &o.shape), &scene.lights, &self.bounded, bvh)
+            })
             .collect()
     }
 }
