@@ -33,7 +33,7 @@ use super::shade::SURFACE_OFFSET;
 #[cfg(target_arch = "x86_64")]
 use super::simd::Avx2;
 use super::simd::Portable;
-use super::tiles::Tiles;
+use super::tiles::{Reaching, Tiles};
 use glam::Vec3;
 use std::cell::{Cell, RefCell};
 
@@ -159,8 +159,12 @@ impl Packet<'_, '_> {
     /// ([`Self::floor`]): the lanes written, and in a tracked frame their cells.
     #[inline]
     pub(crate) fn run(&self, x: u32, y: u32, span: &mut [u8]) -> (u8, [Cells; LANES]) {
-        let done = match self.tiles.plane_among(self.p, x, y, LANES as u32) {
-            Some((plane, others)) => Floor::of(self.p, self.cam, plane)
+        let mut others = Reaching::default();
+        let done = match self
+            .tiles
+            .plane_among(self.p, (x, y, LANES as u32), &mut others)
+        {
+            Some(plane) => Floor::of(self.p, self.cam, plane)
                 .map_or(0, |f| self.floor(&f, others.as_slice(), x, y, span)),
             None => 0,
         };

@@ -140,20 +140,20 @@ impl Tiles {
     }
 
     /// The one plane among the candidates whose rectangles reach pixels `x..x +
-    /// n` of row `y` (all in one tile), and the other such candidates (at most
-    /// [`Reaching::MAX`], in query order); `None` for no plane, several, or too
-    /// many others. A primary ray through those pixels can hit nothing else.
+    /// n` of row `y` (all in one tile); the other such candidates (at most
+    /// [`Reaching::MAX`], in query order) go to `others` (filled in place: no
+    /// copy of the list). `None` for no plane, several, or too many others. A
+    /// primary ray through those pixels can hit nothing else.
     #[must_use]
     pub fn plane_among(
         &self,
         p: &Prepared<'_>,
-        x: u32,
-        y: u32,
-        n: u32,
-    ) -> Option<(usize, Reaching)> {
+        (x, y, n): (u32, u32, u32),
+        others: &mut Reaching,
+    ) -> Option<usize> {
         let (xa, xb, ya, yb) = (x as f32, (x + n) as f32, y as f32, (y + 1) as f32);
         let mut plane = None;
-        let mut others = Reaching::default();
+        others.len = 0;
         for &i in self.at(x, y) {
             let [x0, y0, x1, y1] = self.rects[i];
             if x1 < xa || x0 > xb || y1 < ya || y0 > yb {
@@ -171,7 +171,7 @@ impl Tiles {
                 others.len += 1;
             }
         }
-        Some((plane?, others))
+        plane
     }
 
     /// Whether the shadow rays towards light `light` from plane `plane`'s points
