@@ -9,6 +9,7 @@ use super::prepared::Prepared;
 use super::scene::Shape;
 use super::shade::SURFACE_OFFSET;
 use glam::Vec3;
+use rayon::prelude::*;
 
 /// Tile edge in pixels.
 pub const TILE: u32 = 16;
@@ -224,43 +225,46 @@ fn clear_lights(
     let (across, down) = (width.div_ceil(TILE), height.div_ceil(TILE));
     let lights = p.scene.lights.len().min(32);
     let mut bits = vec![0; (across * down) as usize];
-    for row in 0..down {
-        for col in 0..across {
-            let (x0, y0) = ((col * TILE) as f32 - 1.0, (row * TILE) as f32 - 1.0);
-            let x1 = (((col + 1) * TILE).min(width)) as f32 + 1.0;
-            let y1 = (((row + 1) * TILE).min(height)) as f32 + 1.0;
-            let mut corners = [Vec3::ZERO; 4];
-            let mut all = true;
-            for (c, (x, y)) in corners
-                .iter_mut()
-                .zip([(x0, y0), (x1, y0), (x0, y1), (x1, y1)])
-            {
-                let ray = cam.ray(x, y);
-                match hit_plane(&ray, point, normal) {
-                    Some(t) => *c = ray.at(t),
-                    None => all = false,
-                }
-            }
-            if !all {
-                continue;
-            }
-            // Starts are lifted by SURFACE_OFFSET; their points lie off the plane by
-            // rounding, a few ulps of their coordinates: twice the offset, plus 1e-5
-            // of the largest coordinate, holds both.
-            let size = corners
-                .iter()
-                .map(|c| c.abs().max_element())
-                .fold(1.0, f32::max);
-            let lift = 2.0 * SURFACE_OFFSET + 1e-5 * size;
-            for light in 0..lights {
-                if p.footprints(plane, light)
-                    .is_some_and(|f| f.region_clear(&corners, lift))
+    // Rows of tiles in parallel: the pool's other thread shares this part.
+    bits.par_chunks_mut(across as usize)
+        .zip(0..down)
+        .for_each(|(out, row)| {
+            for (col, bits) in (0..across).zip(out) {
+                let (x0, y0) = ((col * TILE) as f32 - 1.0, (row * TILE) as f32 - 1.0);
+                let x1 = (((col + 1) * TILE).min(width)) as f32 + 1.0;
+                let y1 = (((row + 1) * TILE).min(height)) as f32 + 1.0;
+                let mut corners = [Vec3::ZERO; 4];
+                let mut all = true;
+                for (c, (x, y)) in corners
+                    .iter_mut()
+                    .zip([(x0, y0), (x1, y0), (x0, y1), (x1, y1)])
                 {
-                    bits[(row * across + col) as usize] |= 1 << light;
+                    let ray = cam.ray(x, y);
+                    match hit_plane(&ray, point, normal) {
+                        Some(t) => *c = ray.at(t),
+                        None => all = false,
+                    }
+                }
+                if !all {
+                    continue;
+                }
+                // Starts are lifted by SURFACE_OFFSET; their points lie off the
+                // plane by rounding, a few ulps of their coordinates: twice the
+                // offset, plus 1e-5 of the largest coordinate, holds both.
+                let size = corners
+                    .iter()
+                    .map(|c| c.abs().max_element())
+                    .fold(1.0, f32::max);
+                let lift = 2.0 * SURFACE_OFFSET + 1e-5 * size;
+                for light in 0..lights {
+                    if p.footprints(plane, light)
+                        .is_some_and(|f| f.region_clear(&corners, lift))
+                    {
+                        *bits |= 1 << light;
+                    }
                 }
             }
-        }
-    }
+        });
     bits
 }
 
