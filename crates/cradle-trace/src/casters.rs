@@ -177,6 +177,12 @@ impl Casters {
         }
     }
 
+    /// What [`Self::piece`] computes with: the axis' start, unit axis and
+    /// length, and the pieces.
+    pub(crate) fn axis(&self) -> (Vec3, Vec3, f32, usize) {
+        (self.a, self.u, self.len, self.pieces)
+    }
+
     /// The casters towards light `light` of piece `piece`, with the object
     /// itself or (`outside`) without.
     #[inline]
@@ -190,13 +196,15 @@ impl Casters {
     }
 }
 
+/// How far outside (m) [`clear_of`] asks a point to be.
+pub(crate) const MARGIN: f32 = 1e-5;
+
 /// Whether `p` lies clearly outside the shape `g` (by more than 1e-5 m, half the
 /// offset secondary rays start at): only then does a shadow ray from a point met
 /// from outside skip the object itself. A start inside it (a ray that began in a
 /// touching neighbour met it from within, by rounding, as "outside") tests it, as
 /// the reference does.
 pub(crate) fn clear_of(g: &Geom, p: Vec3) -> bool {
-    const MARGIN: f32 = 1e-5;
     match *g {
         Geom::Sphere { centre, radius } => {
             (p - centre).length_squared() > (radius + MARGIN) * (radius + MARGIN)

@@ -68,7 +68,7 @@ pub(crate) enum Geom {
 }
 
 impl Geom {
-    fn new(shape: &Shape) -> Self {
+    pub(crate) fn new(shape: &Shape) -> Self {
         match *shape {
             Shape::Sphere { centre, radius } => Self::Sphere { centre, radius },
             Shape::Cylinder { a, b, radius } => Self::Cylinder(Cylinder::new(a, b, radius)),

@@ -98,7 +98,7 @@ impl Packet<'_, '_> {
                 outside,
                 plane: false,
                 ..
-            } => self.caster_keys::<S>(object, (outside, on), start),
+            } => self.caster_keys(s, object, (outside, on), start),
             _ => [(0, false); LANES],
         };
         let mut color = splat3(s, Vec3::ZERO);
