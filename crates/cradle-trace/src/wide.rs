@@ -36,6 +36,8 @@ pub(crate) struct Chunk {
     items: [u32; W],
     /// Lanes in use: the bits of the first `len` lanes.
     used: u8,
+    /// A box strictly around the chunk's boxes ([`Self::hull`]).
+    hull: Aabb,
 }
 
 /// Boxes in chunks of eight, in the order given.
@@ -63,15 +65,30 @@ pub(crate) fn push_chunks(chunks: &mut Vec<Chunk>, items: impl IntoIterator<Item
                 max: [[0.0; W]; 3],
                 items: [0; W],
                 used: 0,
+                hull: Aabb::EMPTY,
             });
         }
         let c = &mut chunks[first + n / W];
+        c.hull = c.hull.union(b);
         for a in 0..3 {
             c.min[a][j] = b.min[a];
             c.max[a][j] = b.max[a];
         }
         c.items[j] = u32::try_from(item).expect("object indices fit in u32");
         c.used |= 1 << j;
+    }
+    for c in &mut chunks[first..] {
+        c.hull = widened(c.hull);
+    }
+}
+
+/// `b` widened by far more than a rounding step of its coordinates, so that
+/// each face lies strictly outside `b`.
+fn widened(b: Aabb) -> Aabb {
+    let pad = 1e-5 * (1.0 + b.min.abs().max(b.max.abs()).max_element());
+    Aabb {
+        min: b.min - pad,
+        max: b.max + pad,
     }
 }
 
@@ -110,6 +127,12 @@ fn lanes_avx2(s: Avx2, c: &Chunk, o: Vec3, inv: Vec3, t_max: f32) -> u8 {
 }
 
 impl WideBoxes {
+    /// The chunks: each holds the next eight (or, last, fewer) boxes in order.
+    #[inline]
+    pub(crate) fn chunks(&self) -> &[Chunk] {
+        &self.chunks
+    }
+
     /// The boxes of `items` (item, box), in that order.
     pub(crate) fn new(items: impl IntoIterator<Item = (usize, Aabb)>) -> Self {
         let mut chunks = Vec::new();
@@ -123,6 +146,20 @@ impl WideBoxes {
         WideList {
             chunks: &self.chunks,
         }
+    }
+}
+
+impl Chunk {
+    /// A box holding each of the chunk's boxes strictly inside it (every face
+    /// apart): a ray that misses it before `t_max` (`Aabb::hit`'s slab test,
+    /// in lanes or not) misses each of them before `t_max` or any smaller
+    /// limit. Each slab's entry and exit bound a contained box's (subtraction
+    /// and multiplication by one inverse keep their order when rounded), and
+    /// `0 * inf` (an origin on a face, a direction along it) arises only on
+    /// the hull's faces, where the contained boxes, strictly inside, are missed.
+    #[inline]
+    pub(crate) fn hull(&self) -> &Aabb {
+        &self.hull
     }
 }
 
@@ -238,6 +275,10 @@ mod tests {
                 let i = k * W + j;
                 bits | (u8::from(i < boxes.len() && boxes[i].hit(ray, inv, t_max)) << j)
             });
+            // The hull: missed only where every box of the chunk is.
+            if !c.hull.hit(ray, inv, t_max) {
+                assert_eq!(want, 0, "hull of chunk {k} missed, {ray:?}");
+            }
             let got = lanes(Portable, c, ray.origin, inv, t_max);
             assert_eq!(got, want, "portable, {ray:?}");
             #[cfg(target_arch = "x86_64")]
@@ -269,6 +310,18 @@ mod tests {
         let mut origins = vec![Vec3::new(0.0, 1.0, 2.0), Vec3::new(-2.0, 0.1, 0.0)];
         origins.push(boxes[3].min);
         origins.push(Vec3::new(boxes[5].max.x, 0.0, 0.0));
+        // On the chunks' hulls: corners and faces, where `0 * inf` arises.
+        let hulls = WideBoxes::new(boxes.iter().copied().enumerate());
+        for c in &hulls.chunks {
+            let (lo, hi) = (c.hull.min, c.hull.max);
+            origins.extend([
+                lo,
+                hi,
+                Vec3::new(lo.x, 0.1, 0.0),
+                Vec3::new(0.0, hi.y, -0.1),
+            ]);
+            origins.push(Vec3::new(0.0, lo.y, lo.z));
+        }
         let mut seed = 1u32;
         let mut rnd = || {
             seed = seed.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
