@@ -15,7 +15,7 @@
 //! So each frame equals the full adaptive render byte for byte (tested).
 
 use super::color::Image;
-use super::motion::{Cells, Seg};
+
 use super::render::{Frame, for_rows};
 use super::retrace::{Moved, Notes, RowMotion};
 use glam::Vec3;
@@ -61,21 +61,6 @@ impl Frame<'_> {
             .collect()
     }
 
-    /// Supersamples edge pixel `at` into `px` from `centre`, the colour of its
-    /// sample 0 (the base layer's): its other samples' cells; their segments go
-    /// to `segs`.
-    pub(crate) fn supersample(
-        &self,
-        at: (u32, u32),
-        px: &mut [u8],
-        centre: Vec3,
-        segs: &mut Vec<Seg>,
-    ) -> Cells {
-        let offsets = self.offsets();
-        debug_assert_eq!(offsets[0], CENTRE[0], "sample 0 is the centre");
-        self.put(at, px, (Some(centre), &offsets[1..]), segs).0
-    }
-
     /// A full adaptive frame at `threshold`, and its layers.
     pub(crate) fn adaptive_full(&self, threshold: f32) -> (Image, Layers) {
         let (w, h) = (self.width(), self.height());
@@ -99,10 +84,17 @@ impl Frame<'_> {
             let span = y as usize * n..(y as usize + 1) * n;
             let (flags, lin) = (&edge[span.clone()], &lin[span]);
             let mut rm = RowMotion::new(n, true);
+            let xs: Vec<usize> = (0..n).filter(|&x| flags[x]).collect();
+            let (done, segs) = self.supersampled(y, &xs, |x| lin[x]);
+            let mut done = done.into_iter();
             for (x, px) in row.chunks_exact_mut(4).enumerate() {
                 rm.begin(true);
-                if flags[x] {
-                    rm.cells[x] = self.supersample((x as u32, y), px, lin[x], &mut rm.segs);
+                if flags[x]
+                    && let Some(((bytes, cells), span)) = done.next()
+                {
+                    px.copy_from_slice(&bytes);
+                    rm.cells[x] = cells;
+                    rm.segs.extend_from_slice(&segs[span]);
                 }
             }
             rm.begin(true);
@@ -248,10 +240,13 @@ impl Frame<'_> {
         }
         redo.sort_unstable();
         redo.dedup();
-        for &x in &redo {
-            let px = &mut row[x * 4..x * 4 + 4];
-            let at = (x as u32, y);
-            rm.retrace(x, |segs| (self.supersample(at, px, lin[x], segs), ()));
+        let (done, segs) = self.supersampled(y, &redo, |x| lin[x]);
+        for (&x, ((bytes, cells), span)) in redo.iter().zip(done) {
+            row[x * 4..x * 4 + 4].copy_from_slice(&bytes);
+            rm.retrace(x, |out| {
+                out.extend_from_slice(&segs[span]);
+                (cells, ())
+            });
         }
         let traced = redo.len();
         rm.compact();

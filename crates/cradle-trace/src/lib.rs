@@ -31,6 +31,7 @@ pub mod scene;
 pub mod shade;
 pub mod shadow;
 mod simd;
+mod supersample;
 pub mod tiles;
 mod wide;
 

@@ -46,6 +46,7 @@ mod lane_tests;
 mod lanes;
 mod objects;
 mod occlusion;
+mod samples;
 mod vec;
 
 use vec::{L3, Surface, load3, splat3, store3};
@@ -102,6 +103,11 @@ impl V8 {
     #[inline(always)]
     fn lane(&self, i: usize) -> Vec3 {
         Vec3::new(self.x[i], self.y[i], self.z[i])
+    }
+
+    /// Sets lane `i` to `v`.
+    fn set(&mut self, i: usize, v: Vec3) {
+        (self.x[i], self.y[i], self.z[i]) = (v.x, v.y, v.z);
     }
 }
 

@@ -164,7 +164,12 @@ impl<'a> Frame<'a> {
             bound: self.bound,
             motion: self.motion,
             marks: std::cell::Cell::new([0; LANES]),
-            segs: std::cell::RefCell::new(Vec::new()),
+            // Room for a row's worth of lanes' segments in a tracked frame.
+            segs: std::cell::RefCell::new(if self.motion.is_some() {
+                Vec::with_capacity(256)
+            } else {
+                Vec::new()
+            }),
             scratch: std::cell::Cell::new(Vec::new()),
             colors: std::cell::Cell::new([[0.0; LANES]; 3]),
         })
@@ -276,19 +281,17 @@ impl<'a> Frame<'a> {
             .unzip();
         let base = img.rgba.clone();
         let edges = for_rows(&mut img, parallel, |y, row| {
-            let mut segs = Vec::new();
-            (0..self.width)
-                .zip(row.chunks_exact_mut(4))
-                .map(|(x, px)| {
-                    if self.is_edge(&base, x, y, edge) {
-                        segs.clear();
-                        let centre = lin[y as usize][x as usize];
-                        self.supersample((x, y), px, centre, &mut segs)
-                    } else {
-                        0
-                    }
-                })
-                .collect::<Vec<Cells>>()
+            let xs: Vec<usize> = (0..self.width)
+                .filter(|&x| self.is_edge(&base, x, y, edge))
+                .map(|x| x as usize)
+                .collect();
+            let mut cells: Vec<Cells> = vec![0; self.width as usize];
+            let (done, _) = self.supersampled(y, &xs, |x| lin[y as usize][x]);
+            for (&x, ((bytes, c), _)) in xs.iter().zip(done) {
+                row[x * 4..x * 4 + 4].copy_from_slice(&bytes);
+                cells[x] = c;
+            }
+            cells
         });
         for (m, e) in rows.iter_mut().zip(edges) {
             m.cells.iter_mut().zip(e).for_each(|(a, b)| *a |= b);

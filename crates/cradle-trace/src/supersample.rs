@@ -1,0 +1,104 @@
+//! Adaptive anti-aliasing's edge pixels (after the one-sample base layer):
+//! their other samples, several pixels' at a time over the packets' lanes
+//! where the frame has packets, else pixel by pixel (the scalar reference).
+//! Either way each pixel gets the same bytes, motion cells and segments: each
+//! lane traces what `trace_primary` traces, and the pixel's samples are summed
+//! in the scalar order (its centre first, then the others in order).
+
+use super::color::srgb8;
+use super::motion::{Cells, Seg};
+use super::packet::LANES;
+use super::render::Frame;
+use glam::Vec3;
+use std::ops::Range;
+
+/// An edge pixel's result: its RGBA bytes and its samples' motion cells.
+pub(crate) type Sampled = ([u8; 4], Cells);
+
+/// The pixel being summed: column, sum so far, cells.
+type Open = (usize, Vec3, Cells);
+
+impl Frame<'_> {
+    /// Supersamples the edge pixels `xs` (ascending) of row `y`, whose centre
+    /// samples' linear colours `centre` gives: calls `each(x, result, segments)`
+    /// for each, in order (the segments of its other samples, in a tracked
+    /// frame).
+    pub(crate) fn supersample_row(
+        &self,
+        y: u32,
+        xs: &[usize],
+        centre: impl Fn(usize) -> Vec3,
+        mut each: impl FnMut(usize, Sampled, &[Seg]),
+    ) {
+        let others = &self.offsets()[1..];
+        let mut segs = Vec::new();
+        let Some(pk) = self.packets(&[(0.5, 0.5)]).filter(|_| !others.is_empty()) else {
+            for &x in xs {
+                segs.clear();
+                let mut px = [0; 4];
+                let (cells, _) =
+                    self.put((x as u32, y), &mut px, (Some(centre(x)), others), &mut segs);
+                each(x, (px, cells), &segs);
+            }
+            return;
+        };
+        let n = others.len() + 1;
+        let finish =
+            |(x, sum, cells): Open, segs: &[Seg], each: &mut dyn FnMut(usize, Sampled, &[Seg])| {
+                // `pixel`: the sum over the samples divided by their count.
+                let c = sum / n as f32;
+                each(x, ([srgb8(c.x), srgb8(c.y), srgb8(c.z), 255], cells), segs);
+            };
+        let mut pairs = xs
+            .iter()
+            .flat_map(|&x| others.iter().map(move |&o| (x, o)))
+            .peekable();
+        let mut open: Option<Open> = None;
+        let (mut batch, mut at) = ([0; LANES], [(0.0, 0.0); LANES]);
+        while pairs.peek().is_some() {
+            let mut len = 0;
+            for (x, (dx, dy)) in pairs.by_ref().take(LANES) {
+                // `pixel`: camera.ray(x + dx, y + dy).
+                (batch[len], at[len]) = (x, (x as f32 + dx, y as f32 + dy));
+                len += 1;
+            }
+            let colors = pk.camera_samples(&at[..len]);
+            let marks = pk.marks.get();
+            for (i, &x) in batch[..len].iter().enumerate() {
+                if open.is_none_or(|o| o.0 != x) {
+                    if let Some(done) = open.take() {
+                        finish(done, &segs, &mut each);
+                        segs.clear();
+                    }
+                    open = Some((x, Vec3::ZERO + centre(x), 0));
+                }
+                if let Some(o) = open.as_mut() {
+                    o.1 += colors[i];
+                    o.2 |= marks[i];
+                }
+                pk.lane_segs(i, &mut segs);
+            }
+        }
+        if let Some(done) = open {
+            finish(done, &segs, &mut each);
+        }
+    }
+
+    /// [`Self::supersample_row`] collected: per pixel of `xs`, its result and
+    /// where its segments lie in the second vector.
+    pub(crate) fn supersampled(
+        &self,
+        y: u32,
+        xs: &[usize],
+        centre: impl Fn(usize) -> Vec3,
+    ) -> (Vec<(Sampled, Range<usize>)>, Vec<Seg>) {
+        let mut out = Vec::with_capacity(xs.len());
+        let mut all = Vec::new();
+        self.supersample_row(y, xs, centre, |_, r, segs| {
+            let from = all.len();
+            all.extend_from_slice(segs);
+            out.push((r, from..all.len()));
+        });
+        (out, all)
+    }
+}
