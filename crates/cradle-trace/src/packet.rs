@@ -162,19 +162,24 @@ pub(crate) struct Packet<'a, 'p> {
 impl Packet<'_, '_> {
     /// Traces pixels `x..x + 8` of row `y` into `span` (8 RGBA pixels) where
     /// the floor is the one plane their tile offers and the nearest hit
-    /// ([`Self::floor`]): the lanes written, and in a tracked frame their cells.
+    /// ([`Self::floor`]): the lanes written (their cells: [`Self::marks`]).
     #[inline]
-    pub(crate) fn run(&self, x: u32, y: u32, span: &mut [u8]) -> (u8, [Cells; LANES]) {
+    pub(crate) fn run(&self, x: u32, y: u32, span: &mut [u8]) -> u8 {
         let mut others = Reaching::default();
-        let done = match self
+        match self
             .tiles
             .plane_among(self.p, (x, y, LANES as u32), &mut others)
         {
             Some(plane) => Floor::of(self.p, self.cam, plane)
                 .map_or(0, |f| self.floor(&f, others.as_slice(), x, y, span)),
             None => 0,
-        };
-        (done, self.marks.get())
+        }
+    }
+
+    /// The cells each lane's rays passed through in the last packet (in a
+    /// tracked frame).
+    pub(crate) fn marks(&self) -> [Cells; LANES] {
+        self.marks.get()
     }
 
     /// Notes the cells the segment of `ray` up to `t` passes through, and its part

@@ -195,12 +195,18 @@ impl<'a> Frame<'a> {
                 && x + lanes <= self.width
             {
                 let span = &mut out[x as usize * 4..(x + lanes) as usize * 4];
-                let (done, marks) = pk.run(x, y, span);
+                let done = pk.run(x, y, span);
                 if let Some(l) = lin.as_deref_mut() {
                     for i in (0..LANES).filter(|i| done & (1 << i) != 0) {
                         l[x as usize + i] = pk.color(i);
                     }
                 }
+                if done == 0xFF && !track {
+                    // All eight written, nothing to note.
+                    x += lanes;
+                    continue;
+                }
+                let marks = if track { pk.marks() } else { [0; LANES] };
                 for i in x..x + lanes {
                     rm.begin(track);
                     if done & (1 << (i - x)) != 0 {

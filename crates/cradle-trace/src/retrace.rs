@@ -312,7 +312,8 @@ impl Frame<'_> {
                 Some(pk) if end - x == LANES && count >= PACKET_AT_LEAST => {
                     let span = &mut row[x * 4..end * 4];
                     let before: [u8; 4 * LANES] = span.try_into().expect("a run of LANES");
-                    let (done, marks) = pk.run(x as u32, y, span);
+                    let done = pk.run(x as u32, y, span);
+                    let marks = pk.marks();
                     for k in (x..end).filter(|k| done & (1 << (k - x)) != 0) {
                         rm.retrace(k, |segs| {
                             if track {
