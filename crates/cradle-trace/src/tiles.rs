@@ -152,27 +152,28 @@ impl Tiles {
         (x, y, n): (u32, u32, u32),
         others: &mut Reaching,
     ) -> Option<usize> {
+        // Planes reach every tile and come first in query order, so a tile's
+        // list starts with all of them: one plane, or the scalar path.
+        let ([plane], Some((&first, rest))) = (p.planes(), self.at(x, y).split_first()) else {
+            return None;
+        };
+        if first != *plane {
+            return None;
+        }
         let (xa, xb, ya, yb) = (x as f32, (x + n) as f32, y as f32, (y + 1) as f32);
-        let mut plane = None;
         others.len = 0;
-        for &i in self.at(x, y) {
+        for &i in rest {
             let [x0, y0, x1, y1] = self.rects[i];
             if x1 < xa || x0 > xb || y1 < ya || y0 > yb {
                 continue;
             }
-            if matches!(p.scene.objects[i].shape, Shape::Plane { .. }) {
-                if plane.is_some() {
-                    return None;
-                }
-                plane = Some(i);
-            } else if others.len == Reaching::MAX {
+            if others.len == Reaching::MAX {
                 return None;
-            } else {
-                others.ids[others.len] = i;
-                others.len += 1;
             }
+            others.ids[others.len] = i;
+            others.len += 1;
         }
-        plane
+        Some(first)
     }
 
     /// Whether the shadow rays towards light `light` from plane `plane`'s points
