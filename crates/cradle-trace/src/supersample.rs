@@ -15,40 +15,38 @@ use std::ops::Range;
 /// An edge pixel's result: its RGBA bytes and its samples' motion cells.
 pub(crate) type Sampled = ([u8; 4], Cells);
 
-/// The pixel being summed: column, sum so far, cells.
-type Open = (usize, Vec3, Cells);
+/// The pixel being summed: column, sum so far, cells, where its segments start.
+type Open = (usize, Vec3, Cells, usize);
 
 impl Frame<'_> {
     /// Supersamples the edge pixels `xs` (ascending) of row `y`, whose centre
-    /// samples' linear colours `centre` gives: calls `each(x, result, segments)`
-    /// for each, in order (the segments of its other samples, in a tracked
-    /// frame).
-    pub(crate) fn supersample_row(
+    /// samples' linear colours `centre` gives: per pixel of `xs`, in order, its
+    /// result and where its other samples' segments (in a tracked frame) lie in
+    /// the second vector.
+    pub(crate) fn supersampled(
         &self,
         y: u32,
         xs: &[usize],
         centre: impl Fn(usize) -> Vec3,
-        mut each: impl FnMut(usize, Sampled, &[Seg]),
-    ) {
+    ) -> (Vec<(Sampled, Range<usize>)>, Vec<Seg>) {
         let others = &self.offsets()[1..];
+        let mut out = Vec::with_capacity(xs.len());
         let mut segs = Vec::new();
         let Some(pk) = self.packets(&[(0.5, 0.5)]).filter(|_| !others.is_empty()) else {
             for &x in xs {
-                segs.clear();
-                let mut px = [0; 4];
+                let (from, mut px) = (segs.len(), [0; 4]);
                 let (cells, _) =
                     self.put((x as u32, y), &mut px, (Some(centre(x)), others), &mut segs);
-                each(x, (px, cells), &segs);
+                out.push(((px, cells), from..segs.len()));
             }
-            return;
+            return (out, segs);
         };
         let n = others.len() + 1;
-        let finish =
-            |(x, sum, cells): Open, segs: &[Seg], each: &mut dyn FnMut(usize, Sampled, &[Seg])| {
-                // `pixel`: the sum over the samples divided by their count.
-                let c = sum / n as f32;
-                each(x, ([srgb8(c.x), srgb8(c.y), srgb8(c.z), 255], cells), segs);
-            };
+        let finish = |(_, sum, cells, from): Open, to: usize| -> (Sampled, Range<usize>) {
+            // `pixel`: the sum over the samples divided by their count.
+            let c = sum / n as f32;
+            (([srgb8(c.x), srgb8(c.y), srgb8(c.z), 255], cells), from..to)
+        };
         let mut pairs = xs
             .iter()
             .flat_map(|&x| others.iter().map(move |&o| (x, o)))
@@ -63,14 +61,13 @@ impl Frame<'_> {
                 len += 1;
             }
             let colors = pk.camera_samples(&at[..len]);
-            let marks = pk.marks.get();
+            let marks = pk.marks();
             for (i, &x) in batch[..len].iter().enumerate() {
                 if open.is_none_or(|o| o.0 != x) {
                     if let Some(done) = open.take() {
-                        finish(done, &segs, &mut each);
-                        segs.clear();
+                        out.push(finish(done, segs.len()));
                     }
-                    open = Some((x, Vec3::ZERO + centre(x), 0));
+                    open = Some((x, Vec3::ZERO + centre(x), 0, segs.len()));
                 }
                 if let Some(o) = open.as_mut() {
                     o.1 += colors[i];
@@ -80,25 +77,8 @@ impl Frame<'_> {
             }
         }
         if let Some(done) = open {
-            finish(done, &segs, &mut each);
+            out.push(finish(done, segs.len()));
         }
-    }
-
-    /// [`Self::supersample_row`] collected: per pixel of `xs`, its result and
-    /// where its segments lie in the second vector.
-    pub(crate) fn supersampled(
-        &self,
-        y: u32,
-        xs: &[usize],
-        centre: impl Fn(usize) -> Vec3,
-    ) -> (Vec<(Sampled, Range<usize>)>, Vec<Seg>) {
-        let mut out = Vec::with_capacity(xs.len());
-        let mut all = Vec::new();
-        self.supersample_row(y, xs, centre, |_, r, segs| {
-            let from = all.len();
-            all.extend_from_slice(segs);
-            out.push((r, from..all.len()));
-        });
-        (out, all)
+        (out, segs)
     }
 }
