@@ -176,6 +176,14 @@ impl Packet<'_, '_> {
         }
     }
 
+    /// Forgets the last packet's cells and segments (in a tracked frame).
+    pub(crate) fn fresh(&self) {
+        if self.motion.is_some() {
+            self.marks.set([0; LANES]);
+            self.segs.borrow_mut().clear();
+        }
+    }
+
     /// The cells each lane's rays passed through in the last packet (in a
     /// tracked frame).
     pub(crate) fn marks(&self) -> [Cells; LANES] {
@@ -243,10 +251,7 @@ impl Packet<'_, '_> {
         y: u32,
         out: &mut [u8],
     ) -> u8 {
-        if self.motion.is_some() {
-            self.marks.set([0; LANES]);
-            self.segs.borrow_mut().clear();
-        }
+        self.fresh();
         #[cfg(target_arch = "x86_64")]
         if let Some(s) = Avx2::detect() {
             // SAFETY: the token proves the CPU has AVX2.

@@ -26,7 +26,8 @@ use std::cell::Cell;
 /// boxes eight at a time instead of walking it.
 pub(crate) const WIDE_AT_MOST: usize = 64;
 
-const W: usize = 8;
+/// Boxes per chunk.
+pub(crate) const W: usize = 8;
 
 /// Up to eight boxes and the items they belong to.
 #[derive(Debug, Clone)]

@@ -28,6 +28,7 @@ use crate::shade::{BAILOUT, SURFACE_OFFSET, shade, trace};
 #[cfg(target_arch = "x86_64")]
 use crate::simd::Avx2;
 use crate::simd::{Portable, Simd};
+use crate::wide::W;
 use glam::Vec3;
 
 /// Fewer lanes than this on one object are traced one by one, by the scalar
@@ -367,7 +368,7 @@ impl Packet<'_, '_> {
             // Eight objects at a time behind their chunk's hull: lanes that
             // miss it before their nearest hit so far miss each of the eight
             // (`Chunk::hull`).
-            for (run, chunk) in p.bounded.chunks(8).zip(p.wide.chunks()) {
+            for (run, chunk) in p.bounded.chunks(W).zip(p.wide.chunks()) {
                 let near = within & box8(s, chunk.hull(), &ray.origin, &inv, best);
                 if S::bits(near) == 0 {
                     continue;

@@ -17,10 +17,7 @@ impl Packet<'_, '_> {
     /// [`Self::lane_segs`]), those of earlier calls dropped.
     pub(crate) fn camera_samples(&self, at: &[(f32, f32)]) -> [Vec3; LANES] {
         assert!(at.len() <= LANES, "at most {LANES} samples at a time");
-        if self.motion.is_some() {
-            self.marks.set([0; LANES]);
-            self.segs.borrow_mut().clear();
-        }
+        self.fresh();
         let mut first = Bounce8 {
             origin: V8::ZERO,
             d: V8::ZERO,
