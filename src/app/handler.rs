@@ -22,8 +22,10 @@ pub struct App {
 }
 
 impl App {
-    /// An app for `session`; the window opens when the loop starts.
-    pub fn new(session: Session) -> Self {
+    /// An app for `session`; the window opens when the loop starts. Its
+    /// frames trace while the one before is drawn ([`Session::pipeline`]).
+    pub fn new(mut session: Session) -> Self {
+        session.pipeline();
         Self {
             session,
             surface: None,
@@ -158,7 +160,10 @@ impl ApplicationHandler<UserEvent> for App {
                     surface.prepare_panel(&mut self.session);
                 }
                 let lines = self.session.hud_lines();
-                if let Err(e) = surface.present(self.session.image(), &lines, panel) {
+                let ready = surface.upload(self.session.image(), &lines);
+                // The next frame traces while this one is drawn.
+                self.session.launch();
+                if ready && let Err(e) = surface.draw(panel) {
                     self.fail(event_loop, e);
                 }
             }

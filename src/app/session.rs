@@ -62,8 +62,9 @@ pub struct Session {
     overrides: Common,
     world: CradleWorld,
     pool: rayon::ThreadPool,
-    /// Traces frames, re-tracing only what the swing can change.
-    renderer: trace::Incremental,
+    /// Traces frames, re-tracing only what the swing can change; in the
+    /// window, running frames trace while the one before is shown.
+    tracer: tracer::Tracer,
     /// The scene changed while paused: trace once more.
     retrace: bool,
     last_frame: Option<Instant>,
@@ -114,7 +115,7 @@ impl Session {
             config,
             source,
             overrides,
-            renderer: trace::Incremental::new(),
+            tracer: tracer::Tracer::default(),
             retrace: true,
             last_frame: None,
             fps: 0.0,
@@ -295,6 +296,8 @@ impl Session {
         if config.render.threads != self.config.render.threads
             && let Ok(pool) = trace::pool(config.render.threads)
         {
+            // Not while a frame traces on the old pool.
+            self.tracer.join();
             self.pool = pool;
         }
         self.asset = config.clone();
@@ -303,43 +306,44 @@ impl Session {
         self.respawn();
     }
 
-    /// Steps the world to `now` and traces, when something moves or changed.
+    /// While running, frames from now on trace on the pool one frame behind: the
+    /// frame [`Self::step`] steps traces from [`Self::launch`] on, and the next
+    /// step takes it back (what the window does, showing one frame while the
+    /// next traces). Paused or changed scenes still trace at once.
+    pub fn pipeline(&mut self) {
+        self.tracer.pipeline();
+    }
+
+    /// Steps the world to `now` and traces, when something moves or changed
+    /// (pipelined and running: leaves the frame for [`Self::launch`]). A frame
+    /// launched before is taken back first.
     pub fn step(&mut self, now: Instant) {
+        let mut traced = self.tracer.join();
         if self.settle().is_some_and(|t| now >= t) {
             self.view_moved = None;
             self.apply_quality();
             self.retrace = true;
         }
         let running = self.running();
-        if running || self.retrace || self.renderer.image().is_none() {
+        if running || self.retrace || self.tracer.image().is_none() {
             let dt = self
                 .last_frame
                 .map_or(0.0, |t| (now - t).as_secs_f64().min(MAX_FRAME_DT));
             // Slow or fast motion: the clock runs at the rate, and the physics is
             // queried at the clock's time, exact as ever.
             self.world.frame(if running { dt * self.rate } else { 0.0 });
-            let start = Instant::now();
-            let (pool, renderer, world) = (&self.pool, &mut self.renderer, &self.world);
-            pool.install(|| {
-                renderer.render(world.scene());
-            });
-            let ms = start.elapsed().as_secs_f64() * 1e3;
-            // Exponential smoothing over ~10 frames keeps the numbers readable.
-            let smooth = |old: f64, new: f64| {
-                if old == 0.0 {
-                    new
-                } else {
-                    0.9 * old + 0.1 * new
-                }
-            };
+            let now_traced = self.tracer.frame(&self.pool, self.world.scene(), running);
+            traced = now_traced.or(traced);
             if running && dt > 0.0 {
                 self.fps = smooth(self.fps, 1.0 / dt);
             }
+            self.retrace = false;
+        }
+        if let Some(ms) = traced {
             if running && let Some(line) = self.rate_log.frame(now, ms) {
                 tracing::info!("{line}");
             }
             self.trace_ms = smooth(self.trace_ms, ms);
-            self.retrace = false;
         }
         if !running {
             self.rate_log.pause();
@@ -347,10 +351,16 @@ impl Session {
         self.last_frame = running.then_some(now);
     }
 
+    /// Starts tracing the frame [`Self::step`] left (pipelined), if it left one;
+    /// the next step takes it back.
+    pub fn launch(&mut self) {
+        self.tracer.launch_due(&self.pool, self.world.scene());
+    }
+
     /// The last picture traced.
     #[must_use]
     pub fn image(&self) -> Option<&Image> {
-        self.renderer.image()
+        self.tracer.image()
     }
 
     /// Simulated time (s) of the last frame.
@@ -364,6 +374,16 @@ mod dragging;
 mod editing;
 mod rate_log;
 mod status;
+mod tracer;
+
+/// Exponential smoothing over ~10 frames keeps the HUD's numbers readable.
+fn smooth(old: f64, new: f64) -> f64 {
+    if old == 0.0 {
+        new
+    } else {
+        0.9 * old + 0.1 * new
+    }
+}
 
 #[cfg(test)]
 #[path = "session_tests.rs"]

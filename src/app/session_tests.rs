@@ -324,3 +324,45 @@ fn a_moving_view_traces_one_sample_per_pixel_until_it_rests() {
     );
     assert_eq!(s.settle(), None);
 }
+
+#[test]
+fn pipelined_frames_show_the_frame_before_and_a_pause_shows_the_last_state() {
+    // Two sessions stepped alike: one traces in line, one pipelined (as the
+    // window does: step, show, launch).
+    let (mut inline, mut piped) = (session(), session());
+    piped.pipeline();
+    let start = Instant::now();
+    for s in [&mut inline, &mut piped] {
+        s.step(start);
+        s.act(Action::TogglePause);
+    }
+    let mut shown = Vec::new();
+    let mut now = start;
+    for _ in 0..6 {
+        now += Duration::from_secs_f64(1.0 / 30.0);
+        inline.step(now);
+        piped.step(now);
+        let want = inline.image().expect("traced in line").rgba.clone();
+        let got = piped.image().map(|i| i.rgba.clone());
+        piped.launch();
+        shown.push((want, got));
+    }
+    // Each pipelined step shows what the in-line session showed a step before.
+    for k in 1..shown.len() {
+        let got = shown[k].1.as_ref().expect("a frame came back");
+        assert!(*got == shown[k - 1].0, "step {k}: the frame before");
+    }
+    assert!(
+        shown.windows(2).any(|w| w[0].0 != w[1].0),
+        "the swing moves, so frames differ"
+    );
+    // Paused, the next step takes the last frame back and shows the state the
+    // clock stopped at, as the in-line session does.
+    for s in [&mut inline, &mut piped] {
+        s.act(Action::TogglePause);
+        s.step(now);
+    }
+    piped.launch();
+    assert!(inline.image().expect("in line").rgba == piped.image().expect("piped").rgba);
+    assert_eq!(inline.time(), piped.time());
+}

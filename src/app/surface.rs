@@ -26,6 +26,20 @@ use winit::window::Window;
 /// Quiet time after the last resize event before presenting again.
 const RESIZE_SETTLE: Duration = Duration::from_millis(150);
 
+/// How the framebuffer of size `buffer` is drawn on a window of size `window`:
+/// pixel by pixel (each pixel a k x k square) where the window is an exact
+/// multiple k of it, the cheap draw that leaves the bytes as they are; scaled to
+/// fit, keeping the aspect, otherwise (pixel-perfect drawing would crop a
+/// smaller window and border a larger one).
+fn scaling((bw, bh): (u32, u32), (ww, wh): (u32, u32)) -> ScalingMode {
+    let exact = bw > 0 && bh > 0 && ww % bw == 0 && wh % bh == 0 && ww / bw == wh / bh;
+    if exact && ww >= bw {
+        ScalingMode::PixelPerfect
+    } else {
+        ScalingMode::Fill
+    }
+}
+
 /// The window and its framebuffer.
 pub struct Surface {
     window: Arc<Window>,
@@ -63,9 +77,7 @@ impl Surface {
             SurfaceTexture::new(sw, sh, Arc::clone(&window)),
         )
         .map_err(|e| WindowError::NoAdapter(e.to_string()))?;
-        // Scale to fit the window, up or down, keeping the aspect (the default,
-        // pixel-perfect, crops a smaller window and borders a larger one).
-        pixels.set_scaling_mode(ScalingMode::Fill);
+        pixels.set_scaling_mode(scaling((width, height), (sw, sh)));
         tracing::info!(
             "window {sw}x{sh}, framebuffer {width}x{height}, format {:?}",
             pixels.render_texture_format()
@@ -106,6 +118,9 @@ impl Surface {
             p.resize(size.width, size.height);
         }
         if size.width > 0 && size.height > 0 {
+            let t = self.pixels.context().texture_extent;
+            self.pixels
+                .set_scaling_mode(scaling((t.width, t.height), (size.width, size.height)));
             match self.pixels.resize_surface(size.width, size.height) {
                 Ok(()) => self.size = (size.width, size.height),
                 Err(e) => tracing::warn!("cannot resize the surface to {size:?}: {e}"),
@@ -119,6 +134,8 @@ impl Surface {
     /// # Errors
     /// The GPU refused the texture, as text for the HUD.
     pub fn resize_buffer(&mut self, width: u32, height: u32) -> Result<(), String> {
+        self.pixels
+            .set_scaling_mode(scaling((width, height), self.size));
         self.pixels
             .resize_buffer(width, height)
             .map_err(|e| e.to_string())
@@ -169,26 +186,18 @@ impl Surface {
         None
     }
 
-    /// Shows `image` with `lines` of HUD over it, and the control panel when
-    /// `panel` (prepared just before), unless hidden or resizing.
-    ///
-    /// # Errors
-    /// Presenting failed for a reason other than a size change.
-    pub fn present(
-        &mut self,
-        image: Option<&Image>,
-        lines: &[HudLine],
-        panel: bool,
-    ) -> anyhow::Result<()> {
+    /// Puts `image` with `lines` of HUD over it in the framebuffer, for
+    /// [`Self::draw`]: false when there is nothing to draw on (hidden, resizing).
+    pub fn upload(&mut self, image: Option<&Image>, lines: &[HudLine]) -> bool {
         // Re-check the size right before rendering (see the module docs).
         let size = self.window.inner_size();
         if size.width == 0 || size.height == 0 || self.occluded || self.resizing.is_some() {
-            return Ok(());
+            return false;
         }
         if (size.width, size.height) != self.size {
             if let Err(e) = self.pixels.resize_surface(size.width, size.height) {
                 tracing::error!("cannot resize the surface: {e}");
-                return Ok(());
+                return false;
             }
             self.size = (size.width, size.height);
         }
@@ -206,6 +215,15 @@ impl Surface {
                 canvas.panel(0, lines);
             }
         }
+        true
+    }
+
+    /// Shows the framebuffer (after [`Self::upload`]), with the control panel
+    /// when `panel` (prepared just before).
+    ///
+    /// # Errors
+    /// Presenting failed for a reason other than a size change.
+    pub fn draw(&mut self, panel: bool) -> anyhow::Result<()> {
         let ui = &mut self.panel;
         let drawn = self.pixels.render_with(|encoder, target, context| {
             context.scaling_renderer.render(encoder, target);
@@ -225,5 +243,25 @@ impl Surface {
             }
             Err(e) => Err(anyhow::anyhow!("presenting the frame failed: {e}")),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::scaling;
+    use pixels::ScalingMode;
+
+    #[test]
+    fn pixel_by_pixel_only_at_exact_multiples() {
+        let pp = |b, w| matches!(scaling(b, w), ScalingMode::PixelPerfect);
+        assert!(pp((1200, 600), (1200, 600)));
+        assert!(pp((1200, 600), (2400, 1200)));
+        assert!(pp((7, 3), (21, 9)));
+        // Not a multiple, different factors, smaller, or empty: scaled.
+        assert!(!pp((1200, 600), (1201, 600)));
+        assert!(!pp((1200, 600), (2400, 600)));
+        assert!(!pp((1200, 600), (600, 300)));
+        assert!(!pp((1200, 600), (0, 0)));
+        assert!(!pp((0, 0), (1200, 600)));
     }
 }

@@ -1,0 +1,147 @@
+//! The session's tracer: the incremental renderer, called in line, or, while the
+//! swing runs in the window, one frame behind on the render pool: the window
+//! shows frame N while frame N + 1 traces, so presenting it (the copy to the GPU,
+//! the compositor's work) and tracing share the CPUs instead of taking turns.
+//! Window-free.
+
+use crate::trace::{Image, Incremental, Scene};
+use std::sync::mpsc;
+use std::time::Instant;
+
+/// What a frame traced on the pool sends back: the renderer, and how long the
+/// trace took (ms).
+type Done = (Incremental, f64);
+
+/// The renderer, at home or away tracing a frame on the pool.
+#[derive(Debug)]
+pub struct Tracer {
+    /// The renderer while at home (`None` while it traces on the pool).
+    home: Option<Incremental>,
+    /// The frame tracing on the pool.
+    away: Option<mpsc::Receiver<Done>>,
+    /// Running frames trace on the pool, one frame behind ([`Self::frame`]).
+    pipelined: bool,
+    /// A frame waits for [`Self::launch_due`].
+    due: bool,
+}
+
+impl Default for Tracer {
+    fn default() -> Self {
+        Self {
+            home: Some(Incremental::new()),
+            away: None,
+            pipelined: false,
+            due: false,
+        }
+    }
+}
+
+impl Tracer {
+    /// Waits for the frame tracing on the pool, if one is, and takes the renderer
+    /// back: how long that frame took to trace (ms).
+    pub fn join(&mut self) -> Option<f64> {
+        let away = self.away.take()?;
+        if let Ok((renderer, ms)) = away.recv() {
+            self.home = Some(renderer);
+            Some(ms)
+        } else {
+            // The trace died with the renderer (rayon aborts on a panic, so this
+            // is defensive): start afresh, the next frame in full.
+            tracing::error!("the tracer stopped; tracing the next frame afresh");
+            self.home = Some(Incremental::new());
+            None
+        }
+    }
+
+    /// Running frames from now on trace on the pool, one frame behind.
+    pub fn pipeline(&mut self) {
+        self.pipelined = true;
+    }
+
+    /// A frame of `scene`: pipelined and `running`, left for
+    /// [`Self::launch_due`] (`None`); else traced now, with how long it took
+    /// (ms).
+    pub fn frame(&mut self, pool: &rayon::ThreadPool, scene: &Scene, running: bool) -> Option<f64> {
+        if self.pipelined && running {
+            self.due = true;
+            None
+        } else {
+            Some(self.trace(pool, scene))
+        }
+    }
+
+    /// Starts the frame [`Self::frame`] left, if it left one, tracing `scene`.
+    pub fn launch_due(&mut self, pool: &rayon::ThreadPool, scene: &Scene) {
+        if std::mem::take(&mut self.due) {
+            self.launch(pool, scene.clone());
+        }
+    }
+
+    /// Traces `scene` on `pool` now (after the frame on the pool, if any): how
+    /// long it took (ms).
+    pub fn trace(&mut self, pool: &rayon::ThreadPool, scene: &Scene) -> f64 {
+        self.join();
+        let renderer = self.home.get_or_insert_with(Incremental::new);
+        let start = Instant::now();
+        pool.install(|| {
+            renderer.render(scene);
+        });
+        start.elapsed().as_secs_f64() * 1e3
+    }
+
+    /// Starts tracing `scene` on `pool` and returns at once: [`Self::join`]
+    /// takes the frame back.
+    pub fn launch(&mut self, pool: &rayon::ThreadPool, scene: Scene) {
+        self.join();
+        let mut renderer = self.home.take().unwrap_or_default();
+        let (done, away) = mpsc::sync_channel(1);
+        pool.spawn(move || {
+            let start = Instant::now();
+            renderer.render(&scene);
+            // Nobody waits when the session has ended meanwhile: nothing to do.
+            let _ = done.send((renderer, start.elapsed().as_secs_f64() * 1e3));
+        });
+        self.away = Some(away);
+    }
+
+    /// The last frame traced and taken back (`None` before the first, and while
+    /// a frame traces on the pool).
+    #[must_use]
+    pub fn image(&self) -> Option<&Image> {
+        self.home.as_ref()?.image()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Tracer;
+    use crate::config::Config;
+    use crate::scene::CradleWorld;
+
+    #[test]
+    fn a_frame_launched_on_the_pool_comes_back_as_the_same_picture_traced_in_line() {
+        let mut config = Config::default();
+        (config.render.width, config.render.height) = (64, 32);
+        let mut world = CradleWorld::new(&config);
+        world.set_running(true);
+        let pool = crate::trace::pool(2).expect("a pool");
+        let (mut inline, mut away) = (Tracer::default(), Tracer::default());
+        for _ in 0..4 {
+            world.frame(0.05);
+            inline.trace(&pool, world.scene());
+            away.launch(&pool, world.scene().clone());
+            assert!(
+                away.image().is_none(),
+                "the renderer is away while it traces"
+            );
+            assert!(away.join().is_some_and(|ms| ms >= 0.0));
+            assert!(away.join().is_none(), "nothing left to take back");
+            let (a, b) = (inline.image().expect("traced"), away.image().expect("back"));
+            assert_eq!((a.width, a.height), (64, 32));
+            assert!(
+                a.rgba == b.rgba,
+                "the same bytes, traced on the pool or in line"
+            );
+        }
+    }
+}
