@@ -8,7 +8,9 @@
 use super::geometry::{Aabb, Ray};
 use glam::Vec3;
 
+mod batch;
 mod near;
+pub(crate) use batch::{Batch, has};
 pub use near::{Near, NearSet};
 
 /// A set of cells of the motion grid, one bit each.
@@ -56,25 +58,21 @@ impl MotionGrid {
         if lo.cmpgt(self.bounds.max).any() || hi.cmplt(self.bounds.min).any() {
             return 0;
         }
-        let [nx, ny, nz] = Self::N;
-        let n = Vec3::new(nx as f32 - 1.0, ny as f32 - 1.0, nz as f32 - 1.0);
+        let n = Vec3::new(31.0, 3.0, 0.0);
         // Clamped to the grid, then truncated: for the non-negative values left
         // that is the floor, without a call to `floorf` (the portable build has
         // no rounding instruction); NaN clamps to 0 either way.
         let c0 = ((lo - self.bounds.min) * self.inv_cell).clamp(Vec3::ZERO, n);
         let c1 = ((hi - self.bounds.min) * self.inv_cell).clamp(Vec3::ZERO, n);
-        // One run of x bits, repeated in every row of 32 by a multiplication,
-        // then the rows y0..=y1 kept (one z layer: rows are y).
-        let (x0, x1) = (c0.x as u32, c1.x as u32);
-        let run = ((1u64 << (x1 + 1)) - 1) & !((1u64 << x0) - 1);
-        let every_row = Cells::from(run) * Self::ROW_ONES;
-        let (y0, y1) = (c0.y as u32, c1.y as u32);
-        let rows = (Cells::MAX >> ((ny as u32 - 1 - (y1 - y0)) * nx as u32)) << (y0 * nx as u32);
-        every_row & rows
+        // One run of x bits (none if x0 > x1), repeated in every row of 32, then
+        // the rows y0..=y1 kept (one z layer: rows are y).
+        // (Through i32, whose saturating conversion is shorter than u32's.)
+        let [x0, y0, _] = c0.as_ivec3().to_array().map(i32::cast_unsigned);
+        let [x1, y1, _] = c1.as_ivec3().to_array().map(i32::cast_unsigned);
+        let run = Cells::from((u32::MAX >> (31 - x1)) & (u32::MAX << x0));
+        let every_row = run | run << 32 | run << 64 | run << 96;
+        every_row & ROWS[(y0 * 4 + y1) as usize]
     }
-
-    /// Bit 0 of every row of x cells.
-    const ROW_ONES: Cells = 1 | 1 << 32 | 1 << 64 | 1 << 96;
 
     /// The cells the segment of `ray` from its start to `t_max` passes through
     /// (a superset: those of its part inside the box's bounding box).
@@ -91,8 +89,19 @@ impl MotionGrid {
         let inv = ray.dir.recip();
         let t1 = (self.outer.min - ray.origin) * inv;
         let t2 = (self.outer.max - ray.origin) * inv;
-        let near = t1.min(t2).max_element().max(0.0);
-        let far = t1.max(t2).min_element().min(t_max);
+        Self::clip_slabs(ray, (t1.min(t2), t1.max(t2)), t_max)
+    }
+
+    /// The (padded) box, where [`Self::clip`] clips.
+    pub(crate) fn outer(&self) -> &Aabb {
+        &self.outer
+    }
+
+    /// [`Self::clip`] given where `ray` enters and leaves each slab of the box,
+    /// `(t1.min(t2), t1.max(t2))` (the packets compute those over their lanes).
+    pub(crate) fn clip_slabs(ray: &Ray, (lo, hi): (Vec3, Vec3), t_max: f32) -> Option<Seg> {
+        let near = lo.max_element().max(0.0);
+        let far = hi.min_element().min(t_max);
         if near > far || far.is_nan() {
             return None;
         }
@@ -105,6 +114,23 @@ impl MotionGrid {
 
 // `cells` counts on rows of 32 x cells and one z layer.
 const _: () = assert!(MotionGrid::N[0] == 32 && MotionGrid::N[1] == 4 && MotionGrid::N[2] == 1);
+
+/// The bits of rows `y0..=y1` of x cells at `ROWS[y0 * 4 + y1]` (none where
+/// `y0 > y1`).
+const ROWS: [Cells; 16] = {
+    let mut rows = [0; 16];
+    let mut i = 0;
+    while i < 16 {
+        let (y0, y1) = (i / 4, i % 4);
+        let mut y = y0;
+        while y <= y1 {
+            rows[i] |= (u32::MAX as Cells) << (32 * y);
+            y += 1;
+        }
+        i += 1;
+    }
+    rows
+};
 
 /// A piece of a ray inside the motion box, from `a` to `b`.
 #[derive(Debug, Clone, Copy, PartialEq)]

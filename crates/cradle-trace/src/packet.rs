@@ -25,7 +25,7 @@
 
 use super::camera::CameraRays;
 use super::color::rgba8_lanes;
-use super::geometry::{Ray, T_MIN};
+use super::geometry::T_MIN;
 use super::motion::{Cells, Motion, MotionGrid, Seg};
 use super::prepared::Prepared;
 use super::scene::{Material, Shape};
@@ -44,6 +44,7 @@ mod bounce;
 #[cfg(test)]
 mod lane_tests;
 mod lanes;
+mod notes;
 mod objects;
 mod occlusion;
 mod samples;
@@ -190,20 +191,6 @@ impl Packet<'_, '_> {
         self.marks.get()
     }
 
-    /// Notes the cells the segment of `ray` up to `t` passes through, and its part
-    /// in the motion box, for lane `i` (what `Motion::segment` notes for a pixel).
-    #[inline]
-    pub(crate) fn note(&self, i: usize, ray: &Ray, t: f32) {
-        if let Some(g) = &self.motion
-            && let Some(s) = g.clip(ray, t)
-        {
-            let mut m = self.marks.get();
-            m[i] |= g.cells(s.a.min(s.b), s.a.max(s.b));
-            self.marks.set(m);
-            self.segs.borrow_mut().push((i as u8, s));
-        }
-    }
-
     /// What `f` returns, given a `Motion` for lane `i` (lent the scratch
     /// buffer) whose cells and segments then go to the lane's in a tracked frame:
     /// the scalar path's tracing of one lane.
@@ -211,9 +198,8 @@ impl Packet<'_, '_> {
         let mut motion = Motion::with(self.motion, self.scratch.take());
         let c = f(&mut motion);
         if self.motion.is_some() {
-            let mut m = self.marks.get();
-            m[i] |= motion.mask;
-            self.marks.set(m);
+            let m = &self.marks.as_array_of_cells()[i];
+            m.set(m.get() | motion.mask);
             let mut segs = self.segs.borrow_mut();
             segs.extend(motion.segs.drain(..).map(|s| (i as u8, s)));
         }
@@ -328,16 +314,7 @@ impl Packet<'_, '_> {
             self.nearest_of(s, others, &d, t)
         };
         let on_floor = !front;
-        if self.motion.is_some() {
-            let (da, ta) = (store3::<S>(&d), S::store(t));
-            for i in (0..LANES).filter(|i| on_floor >> i & 1 != 0) {
-                let ray = Ray {
-                    origin: c.origin,
-                    dir: da.lane(i),
-                };
-                self.note(i, &ray, ta[i]);
-            }
-        }
+        self.note_lanes(s, on_floor, (&splat3(s, c.origin), &d), t);
         // closest_among: the normal faces the ray (`denom` is normal.dot(dir)).
         let back = S::lt(k(0.0), denom);
         let nn = L3 {

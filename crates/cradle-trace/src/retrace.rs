@@ -3,9 +3,12 @@
 //! whose cells meet the moved objects' and one of whose segments comes near a
 //! moved object, where it was or where it is.
 
-use super::motion::{Cells, NearSet, Seg};
+use super::motion::{Batch, Cells, NearSet, Seg, has};
 use super::packet::LANES;
 use super::render::Frame;
+#[cfg(target_arch = "x86_64")]
+use super::simd::Avx2;
+use super::simd::{Portable, Simd};
 use glam::Vec3;
 
 /// What a row's rays passed: per pixel its motion cells, and its segments in the
@@ -172,75 +175,88 @@ pub(crate) struct Moved {
 }
 
 impl Moved {
-    /// The pixels of `rm` (sealed) that may have changed ([`Self::touches`]), in
-    /// order; `None` when no pixel may. Blocks no moved cell reaches are skipped
-    /// whole.
+    /// The pixels of `rm` (sealed) that may have changed, in order; `None` when
+    /// no pixel may. A pixel may have changed when its cells meet the moved
+    /// ones and (in a tracked record of a frame without a moved plane) one of
+    /// its segments near the moved shapes' box comes within a moved shape whose
+    /// cells meet its own ([`crate::motion::Near::meets`]). Blocks no moved cell
+    /// reaches are skipped whole; the segments are tested eight at a time
+    /// ([`Batch`]).
     pub(crate) fn dirty(&self, rm: &RowMotion) -> Option<Vec<u32>> {
         if !rm.meets(self.cells) {
             return None;
         }
         #[cfg(target_arch = "x86_64")]
-        if crate::simd::avx2() {
-            // SAFETY: the CPU has AVX2, checked just above.
+        if let Some(s) = Avx2::detect() {
+            // SAFETY: the token proves the CPU has AVX2.
             #[expect(unsafe_code, reason = "the run-time dispatch to the AVX2 build")]
-            return unsafe { self.dirty_avx2(rm) };
+            return unsafe { self.dirty_avx2(s, rm) };
         }
-        self.dirty_with::<false>(rm)
+        self.dirty_with(Portable, rm)
     }
 
-    /// [`Self::dirty`] compiled for AVX2, the segment tests inlined.
+    /// [`Self::dirty`] compiled for AVX2.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
-    fn dirty_avx2(&self, rm: &RowMotion) -> Option<Vec<u32>> {
-        self.dirty_with::<true>(rm)
+    fn dirty_avx2(&self, s: Avx2, rm: &RowMotion) -> Option<Vec<u32>> {
+        self.dirty_with(s, rm)
     }
 
-    /// [`Self::dirty`] after its row test; `AVX2` (set only where the CPU has
-    /// it): the AVX2 build.
+    /// [`Self::dirty`] after its row test, in lane build `s`.
     #[expect(
         clippy::inline_always,
         reason = "inlined into each build, so the AVX2 one compiles it for AVX2"
     )]
     #[inline(always)]
-    fn dirty_with<const AVX2: bool>(&self, rm: &RowMotion) -> Option<Vec<u32>> {
-        let mut out = Vec::new();
+    fn dirty_with<S: Simd>(&self, s: S, rm: &RowMotion) -> Option<Vec<u32>> {
         let n = rm.cells.len();
+        let cells_only = !rm.tracked() || self.coarse;
+        // A bit per pixel, on the stack for rows up to 4,096 pixels.
+        let (mut stack, mut heap) = ([0u64; 64], Vec::new());
+        let hit: &mut [u64] = if n <= 64 * 64 {
+            &mut stack[..n.div_ceil(64)]
+        } else {
+            heap.resize(n.div_ceil(64), 0);
+            &mut heap
+        };
+        let mut batch = Batch::default();
         for (b, &c) in rm.blocks.iter().enumerate() {
             if c & self.cells == 0 {
                 continue;
             }
-            // A plain loop: a closure would stay a call, outside the AVX2 build.
+            // Plain loops: a closure would stay a call, outside the AVX2 build.
             for k in b * BLOCK..((b + 1) * BLOCK).min(n) {
-                if self.touches::<AVX2>(rm, k) {
-                    out.push(k as u32);
+                let cells = rm.cells[k] & self.cells;
+                if cells == 0 {
+                    continue;
+                }
+                if cells_only {
+                    hit[k / 64] |= 1 << (k % 64);
+                    continue;
+                }
+                for seg in rm.of(k) {
+                    if has(hit, k as u32) {
+                        break;
+                    }
+                    let near_box = seg.a.max(seg.b).cmpge(self.lo).all()
+                        && seg.a.min(seg.b).cmple(self.hi).all();
+                    if near_box && batch.push(k as u32, cells, seg) {
+                        batch.test(s, &self.near, hit);
+                    }
                 }
             }
         }
+        batch.test(s, &self.near, hit);
+        let count = hit.iter().map(|w| w.count_ones() as usize).sum();
+        let mut out = Vec::with_capacity(count);
+        for (i, &word) in hit.iter().enumerate() {
+            let mut w = word;
+            while w != 0 {
+                out.push((i * 64) as u32 + w.trailing_zeros());
+                w &= w - 1;
+            }
+        }
         (!out.is_empty()).then_some(out)
-    }
-
-    /// Whether pixel `k` of `rm` may have changed.
-    /// `AVX2`: as in [`Self::dirty_with`].
-    #[expect(
-        clippy::inline_always,
-        reason = "inlined into each build, so the AVX2 one compiles it for AVX2"
-    )]
-    #[inline(always)]
-    fn touches<const AVX2: bool>(&self, rm: &RowMotion, k: usize) -> bool {
-        let cells = rm.cells[k] & self.cells;
-        if cells == 0 {
-            return false;
-        }
-        if !rm.tracked() || self.coarse {
-            return true;
-        }
-        // A segment near the moved shapes' box, tested against the shapes in
-        // cells the pixel's rays passed.
-        rm.of(k).iter().any(|s| {
-            s.a.max(s.b).cmpge(self.lo).all()
-                && s.a.min(s.b).cmple(self.hi).all()
-                && self.near.meets_with::<AVX2>(s, cells)
-        })
     }
 }
 
@@ -295,6 +311,11 @@ impl Frame<'_> {
             return 0;
         };
         let track = rm.tracked();
+        if let Some(n) = notes.as_deref_mut() {
+            // At most every pixel of the dirty ones' runs.
+            n.dirty.reserve(dirty.len());
+            n.changed.reserve(dirty.len() * 2);
+        }
         let packets = self.packets(offsets);
         let mut traced = 0;
         // Run by run of LANES pixels holding a dirty one: `mask` a bit per

@@ -23,18 +23,6 @@ pub(crate) fn avx2() -> bool {
     !PORTABLE.load(Ordering::Relaxed) && std::arch::is_x86_feature_detected!("avx2")
 }
 
-/// The eight floats of `v` in an AVX register.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-#[inline]
-pub(crate) fn load8(v: &[f32; 8]) -> std::arch::x86_64::__m256 {
-    // SAFETY: an unaligned load of exactly the eight floats `v` holds.
-    #[expect(unsafe_code, reason = "a load from a reference, in bounds by its type")]
-    unsafe {
-        std::arch::x86_64::_mm256_loadu_ps(v.as_ptr())
-    }
-}
-
 #[cfg(target_arch = "x86_64")]
 mod avx2;
 mod portable;

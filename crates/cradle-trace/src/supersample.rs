@@ -31,7 +31,8 @@ impl Frame<'_> {
     ) -> (Vec<(Sampled, Range<usize>)>, Vec<Seg>) {
         let others = &self.offsets()[1..];
         let mut out = Vec::with_capacity(xs.len());
-        let mut segs = Vec::new();
+        // About three segments a sample (the eye's, a reflection's, shadows').
+        let mut segs = Vec::with_capacity(xs.len() * others.len() * 3);
         let Some(pk) = self.packets(&[(0.5, 0.5)]).filter(|_| !others.is_empty()) else {
             for &x in xs {
                 let (from, mut px) = (segs.len(), [0; 4]);

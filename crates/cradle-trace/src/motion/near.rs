@@ -1,10 +1,13 @@
 //! The moved shapes an incremental frame re-traces around: each one grown a
-//! little ([`Near`]), and all of them together ([`NearSet`]), eight to a chunk in
-//! structure of arrays, so that a ray segment is tested against a whole chunk at
-//! once by its distance to each shape's line before the exact distance is taken
-//! for the few it leaves.
+//! little ([`Near`]), and all of them together ([`NearSet`]), with each shape's
+//! numbers for testing eight ray segments at once (`super::batch`) before the
+//! exact distance is taken for the few pairs that test leaves.
 
+use super::batch::{Lanes, meets_one};
 use super::{Cells, Seg};
+#[cfg(target_arch = "x86_64")]
+use crate::simd::Avx2;
+use crate::simd::Portable;
 use glam::Vec3;
 
 /// A moved object where it was or where it is, grown by [`Near::PAD`], with its
@@ -135,187 +138,69 @@ fn segment_segment(p: Vec3, q: Vec3, a: Vec3, b: Vec3) -> f32 {
     }
 }
 
-/// Shapes per chunk of a [`NearSet`].
-const CHUNK: usize = 8;
-
-type F8 = [f32; CHUNK];
-
-/// Eight shapes in structure of arrays; unused lanes have an empty box.
-#[derive(Debug, Clone, Copy)]
-struct Chunk {
-    lo: [F8; 3],
-    hi: [F8; 3],
-    /// A ball's centre, or a string's first end.
-    a: [F8; 3],
-    /// A string's axis, from its first end to the other (zero for a ball).
-    e: [F8; 3],
-    /// The grown radius, squared.
-    r2: F8,
-    /// A ball's lane: all bits set (a NaN), for the blend; a string's: 0.
-    ball: F8,
-}
-
 /// The moved shapes, each with its motion cells, for testing segments against
-/// them all ([`NearSet::meets`]).
+/// them all ([`NearSet::meets`], and a row's segments eight at a time in
+/// `super::batch`).
 #[derive(Debug, Clone, Default)]
 pub struct NearSet {
     nears: Vec<(Cells, Near)>,
-    #[cfg_attr(
-        not(target_arch = "x86_64"),
-        expect(dead_code, reason = "read by the AVX2 build only")
-    )]
-    chunks: Vec<Chunk>,
+    /// Each shape's numbers for the batch test.
+    lanes: Vec<Lanes>,
 }
 
 impl NearSet {
     /// The set of `nears`, each with its cells.
     #[must_use]
     pub fn new(nears: Vec<(Cells, Near)>) -> Self {
-        let chunks = nears
-            .chunks(CHUNK)
-            .map(|c| {
-                let mut k = Chunk {
-                    lo: [[f32::INFINITY; CHUNK]; 3],
-                    hi: [[f32::NEG_INFINITY; CHUNK]; 3],
-                    a: [[0.0; CHUNK]; 3],
-                    e: [[0.0; CHUNK]; 3],
-                    r2: [0.0; CHUNK],
-                    ball: [0.0; CHUNK],
+        let lanes = nears
+            .iter()
+            .map(|(_, n)| {
+                let (a, e, r, ball) = match n.shape {
+                    NearShape::Sphere(c, r) => (c, Vec3::ZERO, r, true),
+                    NearShape::Capsule(a, b, r) => (a, b - a, r, false),
                 };
-                for (i, (_, n)) in c.iter().enumerate() {
-                    let (a, e, r, ball) = match n.shape {
-                        NearShape::Sphere(c, r) => (c, Vec3::ZERO, r, true),
-                        NearShape::Capsule(a, b, r) => (a, b - a, r, false),
-                    };
-                    for (j, (lo, hi)) in [(n.lo.x, n.hi.x), (n.lo.y, n.hi.y), (n.lo.z, n.hi.z)]
-                        .into_iter()
-                        .enumerate()
-                    {
-                        k.lo[j][i] = lo;
-                        k.hi[j][i] = hi;
-                    }
-                    (k.a[0][i], k.a[1][i], k.a[2][i]) = (a.x, a.y, a.z);
-                    (k.e[0][i], k.e[1][i], k.e[2][i]) = (e.x, e.y, e.z);
-                    k.r2[i] = r * r;
-                    k.ball[i] = if ball { f32::from_bits(u32::MAX) } else { 0.0 };
+                Lanes {
+                    lo: n.lo,
+                    hi: n.hi,
+                    a,
+                    e,
+                    r2: r * r,
+                    ball,
                 }
-                k
             })
             .collect();
-        Self { nears, chunks }
+        Self { nears, lanes }
+    }
+
+    /// The shapes, each with its cells.
+    pub(crate) fn nears(&self) -> &[(Cells, Near)] {
+        &self.nears
+    }
+
+    /// Shape `j`'s numbers for the batch test.
+    pub(crate) fn lanes(&self, j: usize) -> &Lanes {
+        &self.lanes[j]
     }
 
     /// Whether segment `s` comes within one of the shapes whose cells meet
-    /// `cells`: what [`Near::meets`] says of some such shape. Where the CPU has
-    /// AVX2, a chunk's eight lanes first test at once the boxes and the distance
-    /// to each shape's line (a ball's: from its centre to the segment's line; a
-    /// string's: between the two lines), which bound the true distance from
-    /// below, with the same slack as [`Near::meets`]; only the lanes left take
-    /// [`Near::meets`]. Elsewhere each shape takes it in turn.
+    /// `cells`: what [`Near::meets`] says of some such shape, by the batch test
+    /// of this one segment (`super::batch`), in the AVX2 build where the CPU has
+    /// AVX2, else the portable one.
     #[must_use]
     pub fn meets(&self, s: &Seg, cells: Cells) -> bool {
         #[cfg(target_arch = "x86_64")]
-        if crate::simd::avx2() {
-            return self.meets_with::<true>(s, cells);
+        if let Some(t) = Avx2::detect() {
+            // SAFETY: the token proves the CPU has AVX2.
+            #[expect(unsafe_code, reason = "the run-time dispatch to the AVX2 build")]
+            return unsafe { meets_avx2(t, self, s, cells) };
         }
-        self.meets_with::<false>(s, cells)
-    }
-
-    /// [`Self::meets`], with `AVX2` the AVX2 build: inlined into callers
-    /// compiled for AVX2 (such as the row filter, `Moved::dirty`), so that the
-    /// lanes' test does not stay a call. `AVX2` is set only where the CPU has
-    /// AVX2.
-    #[expect(
-        clippy::inline_always,
-        reason = "inlined into the AVX2 build of its caller"
-    )]
-    #[inline(always)]
-    pub(crate) fn meets_with<const AVX2: bool>(&self, s: &Seg, cells: Cells) -> bool {
-        #[cfg(target_arch = "x86_64")]
-        if AVX2 {
-            let (p, q) = (s.a, s.b);
-            let seg = [p, q - p, p.min(q), p.max(q)];
-            return self.chunks.iter().enumerate().any(|(ci, k)| {
-                // SAFETY: `AVX2` is set only where the CPU has AVX2.
-                #[expect(unsafe_code, reason = "the AVX2 build's lane test")]
-                let mut maybe = unsafe { k.maybe_avx2(&seg) };
-                while maybe != 0 {
-                    let i = maybe.trailing_zeros() as usize;
-                    maybe &= maybe - 1;
-                    let (c, n) = &self.nears[ci * CHUNK + i];
-                    if c & cells != 0 && n.meets(s) {
-                        return true;
-                    }
-                }
-                false
-            });
-        }
-        self.nears.iter().any(|(c, n)| c & cells != 0 && n.meets(s))
+        meets_one(Portable, self, s, cells)
     }
 }
 
+/// [`meets_one`] compiled for AVX2.
 #[cfg(target_arch = "x86_64")]
-impl Chunk {
-    /// A bit per lane whose shape the segment `[p, d, smin, smax]` (from `p`
-    /// along `d`, within the box `smin..smax`) may come within.
-    #[target_feature(enable = "avx2")]
-    #[inline]
-    fn maybe_avx2(&self, &[p, d, smin, smax]: &[Vec3; 4]) -> u32 {
-        use crate::simd::load8;
-        use std::arch::x86_64::{
-            _CMP_GE_OQ, _CMP_GT_OQ, _CMP_LE_OQ, _mm256_add_ps as add, _mm256_and_ps,
-            _mm256_andnot_ps, _mm256_blendv_ps, _mm256_cmp_ps, _mm256_movemask_ps, _mm256_mul_ps,
-            _mm256_set1_ps as set, _mm256_sub_ps as sub,
-        };
-        let k = self;
-        let (lo, hi) = (
-            [load8(&k.lo[0]), load8(&k.lo[1]), load8(&k.lo[2])],
-            [load8(&k.hi[0]), load8(&k.hi[1]), load8(&k.hi[2])],
-        );
-        let ge = |a, b| _mm256_cmp_ps::<_CMP_GE_OQ>(a, b);
-        let le = |a, b| _mm256_cmp_ps::<_CMP_LE_OQ>(a, b);
-        let inside = _mm256_and_ps(
-            _mm256_and_ps(
-                _mm256_and_ps(ge(set(smax.x), lo[0]), ge(set(smax.y), lo[1])),
-                _mm256_and_ps(ge(set(smax.z), lo[2]), le(set(smin.x), hi[0])),
-            ),
-            _mm256_and_ps(le(set(smin.y), hi[1]), le(set(smin.z), hi[2])),
-        );
-        let mul = |a, b| _mm256_mul_ps(a, b);
-        let w = [
-            sub(load8(&k.a[0]), set(p.x)),
-            sub(load8(&k.a[1]), set(p.y)),
-            sub(load8(&k.a[2]), set(p.z)),
-        ];
-        let (dx, dy, dz) = (set(d.x), set(d.y), set(d.z));
-        let d2 = d.length_squared();
-        let r2 = load8(&k.r2);
-        let slack = set(1.0001);
-        let gt = |a, b| _mm256_cmp_ps::<_CMP_GT_OQ>(a, b);
-        // A ball: |w x d|^2 / |d|^2 is the squared distance from its centre to
-        // the segment's line.
-        let cx = sub(mul(w[1], dz), mul(w[2], dy));
-        let cy = sub(mul(w[2], dx), mul(w[0], dz));
-        let cz = sub(mul(w[0], dy), mul(w[1], dx));
-        let c2 = add(add(mul(cx, cx), mul(cy, cy)), mul(cz, cz));
-        let ball_far = if d2 > 1e-12 {
-            gt(c2, mul(mul(r2, set(d2)), slack))
-        } else {
-            set(0.0)
-        };
-        // A string: with n = d x e, (w . n)^2 / |n|^2 is the squared distance
-        // between the two lines.
-        let e = [load8(&k.e[0]), load8(&k.e[1]), load8(&k.e[2])];
-        let nx = sub(mul(dy, e[2]), mul(dz, e[1]));
-        let ny = sub(mul(dz, e[0]), mul(dx, e[2]));
-        let nz = sub(mul(dx, e[1]), mul(dy, e[0]));
-        let n2 = add(add(mul(nx, nx), mul(ny, ny)), mul(nz, nz));
-        let apart = add(add(mul(w[0], nx), mul(w[1], ny)), mul(w[2], nz));
-        let string_far = _mm256_and_ps(
-            gt(mul(apart, apart), mul(mul(r2, n2), slack)),
-            gt(n2, set(1e-12)),
-        );
-        let far = _mm256_blendv_ps(string_far, ball_far, load8(&k.ball));
-        _mm256_movemask_ps(_mm256_andnot_ps(far, inside)) as u32
-    }
+#[target_feature(enable = "avx2")]
+fn meets_avx2(t: Avx2, set: &NearSet, s: &Seg, cells: Cells) -> bool {
+    meets_one(t, set, s, cells)
 }

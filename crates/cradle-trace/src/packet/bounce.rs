@@ -212,12 +212,8 @@ impl Packet<'_, '_> {
             origin: origin.lane(i),
             dir: dir.lane(i),
         };
-        if self.motion.is_some() {
-            // `shade` of no hit notes the ray to infinity.
-            for i in (0..LANES).filter(|i| missed >> i & 1 != 0) {
-                self.note(i, &lane_ray(i), f32::INFINITY);
-            }
-        }
+        // `shade` of no hit notes the ray to infinity.
+        self.note_lanes(s, missed, (&ray.origin, &ray.d), s.splat(f32::INFINITY));
         let mut color = splat3(s, p.scene.background);
         let (mut reflectivity, mut reflect) = (s.splat(0.0), 0u8);
         let mut next = Bounce {
@@ -252,14 +248,8 @@ impl Packet<'_, '_> {
             let nn = select3::<S>(inside, &n.neg(), &n);
             let outside = !S::bits(inside);
             let lost = group & !S::bits(S::lt(t, s.splat(f32::INFINITY)));
-            if self.motion.is_some() {
-                let ta = S::store(t);
-                let met = group & !lost;
-                for i in (0..LANES).filter(|i| met >> i & 1 != 0) {
-                    // `shade` notes its ray up to the hit.
-                    self.note(i, &lane_ray(i), ta[i]);
-                }
-            }
+            // `shade` notes its ray up to the hit.
+            self.note_lanes(s, group & !lost, (&ray.origin, &ray.d), t);
             for i in (0..LANES).filter(|i| lost >> i & 1 != 0) {
                 // Not met by the hit test after all: the scalar path.
                 let w = S::store(ray.weight)[i];

@@ -11,8 +11,7 @@
 
 use super::bounce::{Bounce, Bounces};
 use super::occlusion::{box8, hit8, plane8, recip};
-use super::{F8, Floor, L3, LANES, Packet, Surface, V8, f8, lanes, splat3, store3};
-use crate::geometry::Ray;
+use super::{Floor, L3, LANES, Packet, Surface, f8, lanes, splat3};
 use crate::scene::{Light, Material, Shape};
 use crate::shade::{BAILOUT, base_color, powi, whole};
 use crate::simd::Simd;
@@ -126,14 +125,7 @@ impl Packet<'_, '_> {
             let want = S::select(s.mask(on), lambert, k(0.0));
             // !(lambert <= 0): a NaN lambert is traced, as in the scalar code.
             let traced = S::bits(!S::le(want, k(0.0)));
-            if self.motion.is_some() {
-                self.note_shadows(
-                    traced,
-                    &store3::<S>(start),
-                    &store3::<S>(&to_light),
-                    &S::store(dist),
-                );
-            }
+            self.note_lanes(s, traced, (start, &to_light), dist);
             let rays = (start, &to_light, dist);
             let blocked = match met {
                 Met::Floor(floor) => self.shadows(s, floor, (x0, y, li), rays, want),
@@ -185,19 +177,6 @@ impl Packet<'_, '_> {
             }
         }
         color
-    }
-
-    /// In a tracked frame, notes the shadow rays the lanes trace (`blocked`
-    /// notes each one whose lambert is not <= 0, the lanes in `traced`).
-    #[inline(never)]
-    fn note_shadows(&self, traced: u8, start: &V8, to_light: &V8, dist: &F8) {
-        for i in (0..LANES).filter(|&i| traced >> i & 1 != 0) {
-            let shadow = Ray {
-                origin: start.lane(i),
-                dir: to_light.lane(i),
-            };
-            self.note(i, &shadow, dist[i]);
-        }
     }
 
     /// The lanes' base colour (`base_color`: a checker on the x-z grid, or

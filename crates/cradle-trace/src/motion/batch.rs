@@ -1,0 +1,182 @@
+//! The motion filter's inner test, eight ray segments at a time: an incremental
+//! frame gathers the segments of a row's pixels whose cells meet the moved ones
+//! into a [`Batch`], and tests each full batch against each moved shape at once
+//! (the segments in lanes, the shape's numbers in every lane), by the boxes and
+//! by the distance from the shape's line, which bounds the true distance from
+//! below. Only the pairs that test leaves take the exact `Near::meets`. Written
+//! once over the lane build (`crate::simd`): AVX2 where the CPU has it, the
+//! portable build elsewhere; both find the pixels the one-by-one test
+//! (`Near::meets` of every segment and shape) finds.
+
+#![expect(
+    clippy::inline_always,
+    reason = "the batch code is inlined into each entry point, so the AVX2 one compiles it for AVX2"
+)]
+
+use super::near::NearSet;
+use super::{Cells, Seg};
+use crate::simd::Simd;
+use glam::Vec3;
+
+/// Segments per batch: the lanes.
+const N: usize = 8;
+
+/// Relative slack of the distance bounds (rounding of the f32 products).
+const SLACK: f32 = 1.0001;
+
+/// Up to eight segments, each with its pixel and its cells, in structure of
+/// arrays. Unused lanes hold an empty box, which meets nothing.
+#[derive(Debug, Clone)]
+pub(crate) struct Batch {
+    n: usize,
+    /// Start, direction (end minus start), and the box of each segment.
+    p: [[f32; N]; 3],
+    d: [[f32; N]; 3],
+    lo: [[f32; N]; 3],
+    hi: [[f32; N]; 3],
+    /// The pixel (index in its row) of each segment.
+    who: [u32; N],
+    /// Its cells that meet the moved ones.
+    cells: [Cells; N],
+    segs: [Seg; N],
+}
+
+impl Default for Batch {
+    fn default() -> Self {
+        let zero = Seg {
+            a: Vec3::ZERO,
+            b: Vec3::ZERO,
+        };
+        Self {
+            n: 0,
+            p: [[0.0; N]; 3],
+            d: [[0.0; N]; 3],
+            lo: [[f32::INFINITY; N]; 3],
+            hi: [[f32::NEG_INFINITY; N]; 3],
+            who: [0; N],
+            cells: [0; N],
+            segs: [zero; N],
+        }
+    }
+}
+
+/// Whether bit `k` of `bits` is set.
+#[inline(always)]
+pub(crate) fn has(bits: &[u64], k: u32) -> bool {
+    bits[k as usize / 64] >> (k % 64) & 1 != 0
+}
+
+impl Batch {
+    /// Adds segment `seg` of pixel `who`, whose cells meeting the moved ones are
+    /// `cells`: true when the batch is then full (to [`Self::test`]).
+    #[inline(always)]
+    pub(crate) fn push(&mut self, who: u32, cells: Cells, seg: &Seg) -> bool {
+        let i = self.n;
+        let (p, q) = (seg.a, seg.b);
+        let (d, lo, hi) = (q - p, p.min(q), p.max(q));
+        for j in 0..3 {
+            self.p[j][i] = p[j];
+            self.d[j][i] = d[j];
+            self.lo[j][i] = lo[j];
+            self.hi[j][i] = hi[j];
+        }
+        self.who[i] = who;
+        self.cells[i] = cells;
+        self.segs[i] = *seg;
+        self.n += 1;
+        self.n == N
+    }
+
+    /// Tests the batch's segments against the shapes of `set`, and sets bit
+    /// `who` of `hit` for each segment that comes within a shape whose cells
+    /// meet its own (`Near::meets`); empties the batch.
+    #[inline(always)]
+    pub(crate) fn test<S: Simd>(&mut self, s: S, set: &NearSet, hit: &mut [u64]) {
+        if self.n == 0 {
+            return;
+        }
+        let l3 = |v: &[[f32; N]; 3]| [s.load(&v[0]), s.load(&v[1]), s.load(&v[2])];
+        let (p, d, lo, hi) = (l3(&self.p), l3(&self.d), l3(&self.lo), l3(&self.hi));
+        let d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+        let gt = |a, b| S::lt(b, a);
+        let tiny = s.splat(1e-12);
+        for (j, (shape_cells, near)) in set.nears().iter().enumerate() {
+            let k = set.lanes(j);
+            let inside = S::le(s.splat(k.lo.x), hi[0])
+                & S::le(s.splat(k.lo.y), hi[1])
+                & S::le(s.splat(k.lo.z), hi[2])
+                & S::le(lo[0], s.splat(k.hi.x))
+                & S::le(lo[1], s.splat(k.hi.y))
+                & S::le(lo[2], s.splat(k.hi.z));
+            let inside = S::bits(inside);
+            if inside == 0 {
+                continue;
+            }
+            let w = [
+                s.splat(k.a.x) - p[0],
+                s.splat(k.a.y) - p[1],
+                s.splat(k.a.z) - p[2],
+            ];
+            let r2 = s.splat(k.r2);
+            let far = if k.ball {
+                // |w x d|^2 / |d|^2: the squared distance from the centre to
+                // the segment's line.
+                let cx = w[1] * d[2] - w[2] * d[1];
+                let cy = w[2] * d[0] - w[0] * d[2];
+                let cz = w[0] * d[1] - w[1] * d[0];
+                let c2 = cx * cx + cy * cy + cz * cz;
+                gt(c2, r2 * d2 * s.splat(SLACK)) & gt(d2, tiny)
+            } else {
+                // With n = d x e, (w . n)^2 / |n|^2: the squared distance
+                // between the two lines.
+                let e = [s.splat(k.e.x), s.splat(k.e.y), s.splat(k.e.z)];
+                let nx = d[1] * e[2] - d[2] * e[1];
+                let ny = d[2] * e[0] - d[0] * e[2];
+                let nz = d[0] * e[1] - d[1] * e[0];
+                let n2 = nx * nx + ny * ny + nz * nz;
+                let apart = w[0] * nx + w[1] * ny + w[2] * nz;
+                gt(apart * apart, r2 * n2 * s.splat(SLACK)) & gt(n2, tiny)
+            };
+            let mut maybe = inside & !S::bits(far);
+            while maybe != 0 {
+                let i = maybe.trailing_zeros() as usize;
+                maybe &= maybe - 1;
+                let who = self.who[i];
+                if !has(hit, who) && shape_cells & self.cells[i] != 0 && near.meets(&self.segs[i]) {
+                    hit[who as usize / 64] |= 1 << (who % 64);
+                }
+            }
+        }
+        for i in 0..self.n {
+            for j in 0..3 {
+                self.lo[j][i] = f32::INFINITY;
+                self.hi[j][i] = f32::NEG_INFINITY;
+            }
+        }
+        self.n = 0;
+    }
+}
+
+/// A moved shape's numbers for [`Batch::test`]: its box, a ball's centre or a
+/// string's first end (`a`), a string's axis (`e`, zero for a ball), and its
+/// grown radius squared.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Lanes {
+    pub(crate) lo: Vec3,
+    pub(crate) hi: Vec3,
+    pub(crate) a: Vec3,
+    pub(crate) e: Vec3,
+    pub(crate) r2: f32,
+    pub(crate) ball: bool,
+}
+
+/// Whether `near` says yes for a segment of a pixel with `cells`: the batch
+/// test of one segment.
+#[must_use]
+pub(crate) fn meets_one<S: Simd>(s: S, set: &NearSet, seg: &Seg, cells: Cells) -> bool {
+    let mut batch = Batch::default();
+    let mut hit = [0u64];
+    batch.push(0, cells, seg);
+    batch.test(s, set, &mut hit);
+    hit[0] != 0
+}
