@@ -3,13 +3,14 @@
 //! whose cells meet the moved objects' and one of whose segments comes near a
 //! moved object, where it was or where it is.
 
-use super::motion::{Batch, Cells, NearSet, Seg, has};
-use super::packet::LANES;
+use super::color::srgb8;
+use super::motion::{Cells, Seg};
+use super::packet::{LANES, Packet};
 use super::render::Frame;
-#[cfg(target_arch = "x86_64")]
-use super::simd::Avx2;
-use super::simd::{Portable, Simd};
 use glam::Vec3;
+
+mod moved;
+pub(crate) use moved::Moved;
 
 /// What a row's rays passed: per pixel its motion cells, and its segments in the
 /// motion box, `segs[span[k][0]..span[k][1]]` for pixel `k`. Without spans
@@ -159,107 +160,6 @@ impl RowMotion {
     }
 }
 
-/// What moved since the last frame: the cells of the moved objects, where they
-/// were and where they are, and those shapes grown a little.
-#[derive(Debug, Clone, Default)]
-pub(crate) struct Moved {
-    pub(crate) cells: Cells,
-    /// Each shape with its own cells.
-    pub(crate) near: NearSet,
-    /// The box around every `near`.
-    pub(crate) lo: Vec3,
-    pub(crate) hi: Vec3,
-    /// A moved shape has no [`crate::motion::Near`] (a plane): the cells alone
-    /// decide.
-    pub(crate) coarse: bool,
-}
-
-impl Moved {
-    /// The pixels of `rm` (sealed) that may have changed, in order; `None` when
-    /// no pixel may. A pixel may have changed when its cells meet the moved
-    /// ones and (in a tracked record of a frame without a moved plane) one of
-    /// its segments near the moved shapes' box comes within a moved shape whose
-    /// cells meet its own ([`crate::motion::Near::meets`]). Blocks no moved cell
-    /// reaches are skipped whole; the segments are tested eight at a time
-    /// ([`Batch`]).
-    pub(crate) fn dirty(&self, rm: &RowMotion) -> Option<Vec<u32>> {
-        if !rm.meets(self.cells) {
-            return None;
-        }
-        #[cfg(target_arch = "x86_64")]
-        if let Some(s) = Avx2::detect() {
-            // SAFETY: the token proves the CPU has AVX2.
-            #[expect(unsafe_code, reason = "the run-time dispatch to the AVX2 build")]
-            return unsafe { self.dirty_avx2(s, rm) };
-        }
-        self.dirty_with(Portable, rm)
-    }
-
-    /// [`Self::dirty`] compiled for AVX2.
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
-    fn dirty_avx2(&self, s: Avx2, rm: &RowMotion) -> Option<Vec<u32>> {
-        self.dirty_with(s, rm)
-    }
-
-    /// [`Self::dirty`] after its row test, in lane build `s`.
-    #[expect(
-        clippy::inline_always,
-        reason = "inlined into each build, so the AVX2 one compiles it for AVX2"
-    )]
-    #[inline(always)]
-    fn dirty_with<S: Simd>(&self, s: S, rm: &RowMotion) -> Option<Vec<u32>> {
-        let n = rm.cells.len();
-        let cells_only = !rm.tracked() || self.coarse;
-        // A bit per pixel, on the stack for rows up to 4,096 pixels.
-        let (mut stack, mut heap) = ([0u64; 64], Vec::new());
-        let hit: &mut [u64] = if n <= 64 * 64 {
-            &mut stack[..n.div_ceil(64)]
-        } else {
-            heap.resize(n.div_ceil(64), 0);
-            &mut heap
-        };
-        let mut batch = Batch::default();
-        for (b, &c) in rm.blocks.iter().enumerate() {
-            if c & self.cells == 0 {
-                continue;
-            }
-            // Plain loops: a closure would stay a call, outside the AVX2 build.
-            for k in b * BLOCK..((b + 1) * BLOCK).min(n) {
-                let cells = rm.cells[k] & self.cells;
-                if cells == 0 {
-                    continue;
-                }
-                if cells_only {
-                    hit[k / 64] |= 1 << (k % 64);
-                    continue;
-                }
-                for seg in rm.of(k) {
-                    if has(hit, k as u32) {
-                        break;
-                    }
-                    let near_box = seg.a.max(seg.b).cmpge(self.lo).all()
-                        && seg.a.min(seg.b).cmple(self.hi).all();
-                    if near_box && batch.push(k as u32, cells, seg) {
-                        batch.test(s, &self.near, hit);
-                    }
-                }
-            }
-        }
-        batch.test(s, &self.near, hit);
-        let count = hit.iter().map(|w| w.count_ones() as usize).sum();
-        let mut out = Vec::with_capacity(count);
-        for (i, &word) in hit.iter().enumerate() {
-            let mut w = word;
-            while w != 0 {
-                out.push((i * 64) as u32 + w.trailing_zeros());
-                w &= w - 1;
-            }
-        }
-        (!out.is_empty()).then_some(out)
-    }
-}
-
 /// What the base layer of an adaptive frame notes as [`Frame::retrace_row`]
 /// traces its pixels again.
 #[derive(Debug)]
@@ -318,6 +218,8 @@ impl Frame<'_> {
         }
         let packets = self.packets(offsets);
         let mut traced = 0;
+        // Dirty pixels no floor packet traced, for the eye rays' lanes.
+        let mut left: Vec<usize> = Vec::with_capacity(LANES);
         // Run by run of LANES pixels holding a dirty one: `mask` a bit per
         // dirty pixel of the run.
         let mut rest = &dirty[..];
@@ -354,6 +256,16 @@ impl Frame<'_> {
                 _ => 0,
             };
             for k in (x..end).filter(|&k| (mask & !done) & (1 << (k - x)) != 0) {
+                traced += 1;
+                if let Some(pk) = &packets {
+                    // Eight at a time over the lanes, as eye rays.
+                    left.push(k);
+                    if left.len() == LANES {
+                        Self::eye_rays(pk, (y, &left, offsets[0]), (row, rm), notes.as_deref_mut());
+                        left.clear();
+                    }
+                    continue;
+                }
                 let px = &mut row[k * 4..k * 4 + 4];
                 let before: [u8; 4] = (&*px).try_into().expect("4 bytes");
                 let at = (k as u32, y);
@@ -361,12 +273,48 @@ impl Frame<'_> {
                 if let Some(n) = notes.as_deref_mut() {
                     n.note(k, true, (&before, px), c);
                 }
-                traced += 1;
             }
+        }
+        if let Some(pk) = &packets
+            && !left.is_empty()
+        {
+            Self::eye_rays(pk, (y, &left, offsets[0]), (row, rm), notes);
         }
         rm.compact();
         // Only pixels of dirty runs changed their cells.
         rm.reseal(dirty.iter().map(|&k| k as usize));
         traced
+    }
+
+    /// Re-traces pixels `ks` (at most [`LANES`]) of row `y` at their one
+    /// sample's offset (packets trace the centre only) over the packet's lanes, each as `trace_primary` traces its ray: the
+    /// bytes, cells and segments the scalar `put` gives (its colour is the
+    /// one sample's, over 1).
+    fn eye_rays(
+        pk: &Packet<'_, '_>,
+        (y, ks, (dx, dy)): (u32, &[usize], (f32, f32)),
+        (row, rm): (&mut [u8], &mut RowMotion),
+        mut notes: Option<&mut Notes<'_>>,
+    ) {
+        let track = rm.tracked();
+        let at: Vec<(f32, f32)> = ks.iter().map(|&k| (k as f32 + dx, y as f32 + dy)).collect();
+        let colors = pk.camera_samples(&at);
+        let marks = pk.marks();
+        for (i, &k) in ks.iter().enumerate() {
+            // `pixel`: the sum from zero over the one sample, divided by 1.
+            let c = (Vec3::ZERO + colors[i]) / 1.0;
+            let px = &mut row[k * 4..k * 4 + 4];
+            let before: [u8; 4] = (&*px).try_into().expect("4 bytes");
+            px.copy_from_slice(&[srgb8(c.x), srgb8(c.y), srgb8(c.z), 255]);
+            rm.retrace(k, |segs| {
+                if track {
+                    pk.lane_segs(i, segs);
+                }
+                (marks[i], ())
+            });
+            if let Some(n) = notes.as_deref_mut() {
+                n.note(k, true, (&before, px), c);
+            }
+        }
     }
 }
