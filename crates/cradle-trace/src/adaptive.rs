@@ -151,17 +151,14 @@ impl Frame<'_> {
             .enumerate()
             .for_each(|(y, flags)| {
                 let beside = [y.checked_sub(1), Some(y + 1).filter(|&v| v < h)];
-                let mut at: Vec<usize> = beside
+                let above_below = beside
                     .into_iter()
                     .flatten()
-                    .flat_map(|v| xs[v].iter().map(|&x| x as usize))
-                    .collect();
-                for &x in &xs[y] {
-                    at.extend(x.saturating_sub(1) as usize..(x as usize + 2).min(w));
-                }
-                at.sort_unstable();
-                at.dedup();
-                for x in at {
+                    .flat_map(|v| xs[v].iter().map(|&x| x as usize));
+                let here = xs[y]
+                    .iter()
+                    .flat_map(|&x| x.saturating_sub(1) as usize..(x as usize + 2).min(w));
+                for x in ascending(w, above_below.chain(here)) {
                     flags[x] = self.is_edge(base, x as u32, y as u32, threshold);
                 }
             });
@@ -238,8 +235,7 @@ impl Frame<'_> {
         if same && redo.is_empty() {
             return 0;
         }
-        redo.sort_unstable();
-        redo.dedup();
+        let redo = ascending(w, redo);
         let (done, segs) = self.supersampled(y, &redo, |x| lin[x]);
         for (&x, ((bytes, cells), span)) in redo.iter().zip(done) {
             row[x * 4..x * 4 + 4].copy_from_slice(&bytes);
@@ -256,5 +252,47 @@ impl Frame<'_> {
             rm.seal();
         }
         traced
+    }
+}
+
+/// The distinct values of `xs` (each below `n`), in ascending order: a bit per
+/// value (on the stack for up to 4,096), then the set bits in order.
+fn ascending(n: usize, xs: impl IntoIterator<Item = usize>) -> Vec<usize> {
+    let (mut stack, mut heap) = ([0u64; 64], Vec::new());
+    let bits: &mut [u64] = if n <= 64 * 64 {
+        &mut stack[..n.div_ceil(64)]
+    } else {
+        heap.resize(n.div_ceil(64), 0);
+        &mut heap
+    };
+    for x in xs {
+        bits[x / 64] |= 1 << (x % 64);
+    }
+    let mut out = Vec::with_capacity(bits.iter().map(|b| b.count_ones() as usize).sum());
+    for (i, &word) in bits.iter().enumerate() {
+        let mut b = word;
+        while b != 0 {
+            out.push(i * 64 + b.trailing_zeros() as usize);
+            b &= b - 1;
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::ascending;
+
+    #[test]
+    fn ascending_sorts_and_drops_repeats_on_both_sides_of_the_stack_limit() {
+        assert_eq!(ascending(10, [3, 1, 3, 9, 0, 1]), vec![0, 1, 3, 9]);
+        assert!(ascending(10, []).is_empty());
+        for n in [64, 4096, 4097, 10_000] {
+            let xs = [n - 1, 0, 63, n / 2, n - 1, n / 2 + 1, 0];
+            let mut want: Vec<usize> = xs.to_vec();
+            want.sort_unstable();
+            want.dedup();
+            assert_eq!(ascending(n, xs), want, "n = {n}");
+        }
     }
 }
