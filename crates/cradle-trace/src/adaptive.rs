@@ -14,6 +14,7 @@
 //!
 //! So each frame equals the full adaptive render byte for byte (tested).
 
+use super::bits::ascending;
 use super::color::Image;
 
 use super::render::{Frame, for_rows};
@@ -252,47 +253,5 @@ impl Frame<'_> {
             rm.seal();
         }
         traced
-    }
-}
-
-/// The distinct values of `xs` (each below `n`), in ascending order: a bit per
-/// value (on the stack for up to 4,096), then the set bits in order.
-fn ascending(n: usize, xs: impl IntoIterator<Item = usize>) -> Vec<usize> {
-    let (mut stack, mut heap) = ([0u64; 64], Vec::new());
-    let bits: &mut [u64] = if n <= 64 * 64 {
-        &mut stack[..n.div_ceil(64)]
-    } else {
-        heap.resize(n.div_ceil(64), 0);
-        &mut heap
-    };
-    for x in xs {
-        bits[x / 64] |= 1 << (x % 64);
-    }
-    let mut out = Vec::with_capacity(bits.iter().map(|b| b.count_ones() as usize).sum());
-    for (i, &word) in bits.iter().enumerate() {
-        let mut b = word;
-        while b != 0 {
-            out.push(i * 64 + b.trailing_zeros() as usize);
-            b &= b - 1;
-        }
-    }
-    out
-}
-
-#[cfg(test)]
-mod tests {
-    use super::ascending;
-
-    #[test]
-    fn ascending_sorts_and_drops_repeats_on_both_sides_of_the_stack_limit() {
-        assert_eq!(ascending(10, [3, 1, 3, 9, 0, 1]), vec![0, 1, 3, 9]);
-        assert!(ascending(10, []).is_empty());
-        for n in [64, 4096, 4097, 10_000] {
-            let xs = [n - 1, 0, 63, n / 2, n - 1, n / 2 + 1, 0];
-            let mut want: Vec<usize> = xs.to_vec();
-            want.sort_unstable();
-            want.dedup();
-            assert_eq!(ascending(n, xs), want, "n = {n}");
-        }
     }
 }

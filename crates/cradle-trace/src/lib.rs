@@ -15,6 +15,7 @@
 //! - [`color`]: linear colour to sRGB bytes in an RGBA8 [`Image`].
 
 mod adaptive;
+mod bits;
 pub mod bvh;
 pub mod camera;
 mod casters;

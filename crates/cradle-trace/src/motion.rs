@@ -10,7 +10,7 @@ use glam::Vec3;
 
 mod batch;
 mod near;
-pub(crate) use batch::{Batch, has};
+pub(crate) use batch::Batch;
 pub use near::{Near, NearSet};
 
 /// A set of cells of the motion grid, one bit each.

@@ -15,6 +15,7 @@
 
 use super::near::NearSet;
 use super::{Cells, Seg};
+use crate::bits::{BitRoom, RowBits};
 use crate::simd::Simd;
 use glam::Vec3;
 
@@ -60,12 +61,6 @@ impl Default for Batch {
     }
 }
 
-/// Whether bit `k` of `bits` is set.
-#[inline(always)]
-pub(crate) fn has(bits: &[u64], k: u32) -> bool {
-    bits[k as usize / 64] >> (k % 64) & 1 != 0
-}
-
 impl Batch {
     /// Adds segment `seg` of pixel `who`, whose cells meeting the moved ones are
     /// `cells`: true when the batch is then full (to [`Self::test`]).
@@ -87,11 +82,11 @@ impl Batch {
         self.n == N
     }
 
-    /// Tests the batch's segments against the shapes of `set`, and sets bit
-    /// `who` of `hit` for each segment that comes within a shape whose cells
+    /// Tests the batch's segments against the shapes of `set`, and adds pixel
+    /// `who` to `hit` for each segment that comes within a shape whose cells
     /// meet its own (`Near::meets`); empties the batch.
     #[inline(always)]
-    pub(crate) fn test<S: Simd>(&mut self, s: S, set: &NearSet, hit: &mut [u64]) {
+    pub(crate) fn test<S: Simd>(&mut self, s: S, set: &NearSet, hit: &mut RowBits<'_>) {
         if self.n == 0 {
             return;
         }
@@ -142,8 +137,11 @@ impl Batch {
                 let i = maybe.trailing_zeros() as usize;
                 maybe &= maybe - 1;
                 let who = self.who[i];
-                if !has(hit, who) && shape_cells & self.cells[i] != 0 && near.meets(&self.segs[i]) {
-                    hit[who as usize / 64] |= 1 << (who % 64);
+                if !hit.has(who as usize)
+                    && shape_cells & self.cells[i] != 0
+                    && near.meets(&self.segs[i])
+                {
+                    hit.set(who as usize);
                 }
             }
         }
@@ -175,8 +173,9 @@ pub(crate) struct Lanes {
 #[must_use]
 pub(crate) fn meets_one<S: Simd>(s: S, set: &NearSet, seg: &Seg, cells: Cells) -> bool {
     let mut batch = Batch::default();
-    let mut hit = [0u64];
+    let mut room = BitRoom::new();
+    let mut hit = room.row(1);
     batch.push(0, cells, seg);
     batch.test(s, set, &mut hit);
-    hit[0] != 0
+    hit.has(0)
 }

@@ -3,7 +3,8 @@
 //! segments of the pixels they leave, eight at a time, against the moved shapes).
 
 use super::{BLOCK, RowMotion};
-use crate::motion::{Batch, Cells, NearSet, has};
+use crate::bits::BitRoom;
+use crate::motion::{Batch, Cells, NearSet};
 #[cfg(target_arch = "x86_64")]
 use crate::simd::Avx2;
 use crate::simd::{Portable, Simd};
@@ -61,14 +62,8 @@ impl Moved {
     fn dirty_with<S: Simd>(&self, s: S, rm: &RowMotion) -> Option<Vec<u32>> {
         let n = rm.cells.len();
         let cells_only = !rm.tracked() || self.coarse;
-        // A bit per pixel, on the stack for rows up to 4,096 pixels.
-        let (mut stack, mut heap) = ([0u64; 64], Vec::new());
-        let hit: &mut [u64] = if n <= 64 * 64 {
-            &mut stack[..n.div_ceil(64)]
-        } else {
-            heap.resize(n.div_ceil(64), 0);
-            &mut heap
-        };
+        let mut room = BitRoom::new();
+        let mut hit = room.row(n);
         let mut batch = Batch::default();
         for (b, &c) in rm.blocks.iter().enumerate() {
             if c & self.cells == 0 {
@@ -81,31 +76,24 @@ impl Moved {
                     continue;
                 }
                 if cells_only {
-                    hit[k / 64] |= 1 << (k % 64);
+                    hit.set(k);
                     continue;
                 }
                 for seg in rm.of(k) {
-                    if has(hit, k as u32) {
+                    if hit.has(k) {
                         break;
                     }
                     let near_box = seg.a.max(seg.b).cmpge(self.lo).all()
                         && seg.a.min(seg.b).cmple(self.hi).all();
                     if near_box && batch.push(k as u32, cells, seg) {
-                        batch.test(s, &self.near, hit);
+                        batch.test(s, &self.near, &mut hit);
                     }
                 }
             }
         }
-        batch.test(s, &self.near, hit);
-        let count = hit.iter().map(|w| w.count_ones() as usize).sum();
-        let mut out = Vec::with_capacity(count);
-        for (i, &word) in hit.iter().enumerate() {
-            let mut w = word;
-            while w != 0 {
-                out.push((i * 64) as u32 + w.trailing_zeros());
-                w &= w - 1;
-            }
-        }
+        batch.test(s, &self.near, &mut hit);
+        let mut out = Vec::with_capacity(hit.count());
+        out.extend(hit.iter().map(|k| k as u32));
         (!out.is_empty()).then_some(out)
     }
 }
