@@ -58,7 +58,8 @@ impl MotionGrid {
         if lo.cmpgt(self.bounds.max).any() || hi.cmplt(self.bounds.min).any() {
             return 0;
         }
-        let n = Vec3::new(31.0, 3.0, 0.0);
+        let [nx, ny, nz] = Self::N;
+        let n = Vec3::new(nx as f32 - 1.0, ny as f32 - 1.0, nz as f32 - 1.0);
         // Clamped to the grid, then truncated: for the non-negative values left
         // that is the floor, without a call to `floorf` (the portable build has
         // no rounding instruction); NaN clamps to 0 either way.

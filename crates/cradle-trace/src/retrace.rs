@@ -212,7 +212,8 @@ impl Frame<'_> {
         };
         let track = rm.tracked();
         if let Some(n) = notes.as_deref_mut() {
-            // At most every pixel of the dirty ones' runs.
+            // `dirty` notes exactly these pixels; `changed` at most the traced
+            // ones (up to a run of eight each), seldom more than twice as many.
             n.dirty.reserve(dirty.len());
             n.changed.reserve(dirty.len() * 2);
         }
