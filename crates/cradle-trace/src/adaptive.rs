@@ -145,12 +145,13 @@ impl Frame<'_> {
         let mut traced: usize = rows.iter().map(|r| r.0).sum();
         let (dirty, xs): (Vec<_>, Vec<_>) = rows.into_iter().map(|(_, d, c)| (d, c)).unzip();
         let (base, lin) = (&layers.base.rgba, &layers.lin);
-        // The edge test again at each changed pixel and its 4-neighbours.
-        let old_edge = &layers.edge;
-        let mut edge = old_edge.clone();
-        edge.par_chunks_exact_mut(w)
+        // The edge test again at each changed pixel and its 4-neighbours, in
+        // place: per row, the pixels whose flag flipped.
+        let flips: Vec<Vec<u32>> = layers
+            .edge
+            .par_chunks_exact_mut(w)
             .enumerate()
-            .for_each(|(y, flags)| {
+            .map(|(y, flags)| {
                 let beside = [y.checked_sub(1), Some(y + 1).filter(|&v| v < h)];
                 let above_below = beside
                     .into_iter()
@@ -159,10 +160,18 @@ impl Frame<'_> {
                 let here = xs[y]
                     .iter()
                     .flat_map(|&x| x.saturating_sub(1) as usize..(x as usize + 2).min(w));
+                let mut flipped = Vec::new();
                 for x in ascending(w, above_below.chain(here)) {
-                    flags[x] = self.is_edge(base, x as u32, y as u32, threshold);
+                    let now = self.is_edge(base, x as u32, y as u32, threshold);
+                    if now != flags[x] {
+                        flags[x] = now;
+                        flipped.push(x as u32);
+                    }
                 }
-            });
+                flipped
+            })
+            .collect();
+        let edge = &layers.edge;
         traced += img
             .rgba
             .par_chunks_exact_mut(stride)
@@ -176,33 +185,31 @@ impl Frame<'_> {
                     dirty: &dirty[y],
                     changed: &xs[y],
                 };
-                let flags = (&old_edge[span.clone()], &edge[span]);
-                self.final_row(y as u32, (row, rm), &base, flags, moved)
+                self.final_row(y as u32, (row, rm), &base, (&edge[span], &flips[y]), moved)
             })
             .sum::<usize>();
-        layers.edge = edge;
         traced
     }
 
     /// Row `y` of the picture (`row`, with its edge record `rm`): base colours
-    /// where not an edge, samples kept or traced again where an edge.
+    /// where not an edge, samples kept or traced again where an edge. `is`: the
+    /// row's edge flags; `flips`: the pixels whose flag this frame flipped.
     fn final_row(
         &self,
         y: u32,
         (row, rm): (&mut [u8], &mut RowMotion),
         base: &Base<'_>,
-        (was, is): (&[bool], &[bool]),
+        (is, flips): (&[bool], &[u32]),
         moved: &Moved,
     ) -> usize {
         let w = is.len();
-        let same = was == is;
         let Base {
             bytes,
             lin,
             dirty,
             changed,
         } = *base;
-        if same && dirty.is_empty() && changed.is_empty() && !rm.meets(moved.cells) {
+        if flips.is_empty() && dirty.is_empty() && changed.is_empty() && !rm.meets(moved.cells) {
             return 0;
         }
         let show_base = |row: &mut [u8], x: usize| {
@@ -216,14 +223,13 @@ impl Frame<'_> {
         // Pixels that stop being edges show the base colour and drop their
         // record; new edges are supersampled.
         let mut redo: Vec<usize> = Vec::new();
-        if !same {
-            for x in 0..w {
-                if was[x] && !is[x] {
-                    show_base(row, x);
-                    rm.clear(x);
-                } else if is[x] && !was[x] {
-                    redo.push(x);
-                }
+        for &x in flips {
+            let x = x as usize;
+            if is[x] {
+                redo.push(x);
+            } else {
+                show_base(row, x);
+                rm.clear(x);
             }
         }
         // So are edges whose other samples' segments come near a moved object
@@ -233,7 +239,7 @@ impl Frame<'_> {
             redo.extend(touched.iter().map(|&x| x as usize).filter(|&x| is[x]));
         }
         redo.extend(dirty.iter().map(|&x| x as usize).filter(|&x| is[x]));
-        if same && redo.is_empty() {
+        if redo.is_empty() && flips.is_empty() {
             return 0;
         }
         let redo = ascending(w, redo);
@@ -247,11 +253,10 @@ impl Frame<'_> {
         }
         let traced = redo.len();
         rm.compact();
-        if same {
-            rm.reseal(redo);
-        } else {
-            rm.seal();
-        }
+        // The blocks of the pixels whose cells changed: those traced again and
+        // those that stopped being edges.
+        let cleared = flips.iter().map(|&x| x as usize).filter(|&x| !is[x]);
+        rm.reseal(ascending(w, redo.iter().copied().chain(cleared)));
         traced
     }
 }
