@@ -234,7 +234,7 @@ pub(crate) fn blocked(
     motion: &mut Motion,
 ) -> bool {
     motion.segment(shadow, dist);
-    if tile.is_some_and(|(t, x, y)| t.shadow_clear(hit.object, li, x, y)) {
+    if tile.is_some_and(|(t, x, y)| t.shadow_clear(p, (hit.object, li), x, y)) {
         p.occluded_by_planes(shadow, dist)
     } else {
         p.occluded_towards((hit.object, hit.outside), li, shadow, dist)

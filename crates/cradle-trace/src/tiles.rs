@@ -9,7 +9,7 @@ use super::prepared::Prepared;
 use super::scene::Shape;
 use super::shade::SURFACE_OFFSET;
 use glam::Vec3;
-use rayon::prelude::*;
+use std::sync::atomic::{AtomicU64, Ordering};
 
 /// Tile edge in pixels.
 pub const TILE: u32 = 16;
@@ -24,10 +24,40 @@ pub struct Tiles {
     rects: Vec<[f32; 4]>,
     /// Per plane (object index), lists for its mirror rays.
     mirrors: Vec<(usize, Vec<Vec<usize>>)>,
-    /// Per plane (object index), per tile, a bit per light whose shadow rays from
-    /// the plane's points in the tile only a plane can block.
-    clear: Vec<(usize, Vec<u32>)>,
+    /// Per plane, per tile, a bit per light whose shadow rays from the plane's
+    /// points in the tile only a plane can block: found the first time a tile
+    /// is asked, as most frames of a moving scene ask few.
+    clear: Vec<Clear>,
+    /// The camera and picture size, for the shadow bits.
+    cam: CameraRays,
+    size: (u32, u32),
 }
+
+/// A plane's shadow bits ([`Tiles::shadow_clear`]): per tile, [`FOUND`] once
+/// found, with a bit per light (of the first 32) below it.
+#[derive(Debug)]
+struct Clear {
+    object: usize,
+    point: Vec3,
+    normal: Vec3,
+    bits: Vec<AtomicU64>,
+}
+
+impl Clone for Clear {
+    fn clone(&self) -> Self {
+        Self {
+            bits: self
+                .bits
+                .iter()
+                .map(|b| AtomicU64::new(b.load(Ordering::Relaxed)))
+                .collect(),
+            ..*self
+        }
+    }
+}
+
+/// The bit of a tile's shadow bits that says they were found.
+const FOUND: u64 = 1 << 32;
 
 /// The bounded candidates whose rectangles reach a packet's pixels.
 #[derive(Debug, Clone, Copy, Default)]
@@ -106,37 +136,38 @@ impl Tiles {
                     _ => None,
                 })
         };
-        // The three parts on two threads where the pool has them: the mirror
-        // lists and the primary lists on one, the shadow bits on the other.
-        let ((mirrors, (lists, rects)), clear) = rayon::join(
+        // The two parts on two threads where the pool has them: the mirror
+        // lists on one, the primary lists on the other.
+        let (mirrors, (lists, rects)) = rayon::join(
             || {
-                let mirrors = planes()
+                planes()
                     .map(|(i, point, normal)| {
                         let image = objects
                             .iter()
                             .map(|&(k, b)| (k, b.map(|b| mirrored(b, point, normal))));
                         (i, lists(image, cam, width, height))
                     })
-                    .collect();
-                (
-                    mirrors,
-                    lists_and_rects(objects.iter().copied(), cam, width, height),
-                )
-            },
-            || {
-                planes()
-                    .map(|(i, point, normal)| {
-                        (i, clear_lights(p, i, cam, (point, normal), width, height))
-                    })
                     .collect()
             },
+            || lists_and_rects(objects.iter().copied(), cam, width, height),
         );
+        let tiles = (width.div_ceil(TILE) * height.div_ceil(TILE)) as usize;
+        let clear = planes()
+            .map(|(object, point, normal)| Clear {
+                object,
+                point,
+                normal,
+                bits: (0..tiles).map(|_| AtomicU64::new(0)).collect(),
+            })
+            .collect();
         Self {
             across: width.div_ceil(TILE),
             lists,
             rects,
             mirrors,
             clear,
+            cam: *cam,
+            size: (width, height),
         }
     }
 
@@ -177,16 +208,29 @@ impl Tiles {
     }
 
     /// Whether the shadow rays towards light `light` from plane `plane`'s points
-    /// seen through pixel `(x, y)` can only be blocked by a plane.
+    /// seen through pixel `(x, y)` can only be blocked by a plane (`p`: the
+    /// scene the tiles were made for). A tile's bits are found the first time
+    /// it is asked ([`clear_lights`]); threads that find them at once store the
+    /// same bits.
     #[must_use]
-    pub fn shadow_clear(&self, plane: usize, light: usize, x: u32, y: u32) -> bool {
-        let tile = self.tile(x, y);
-        light < 32
-            && self
-                .clear
-                .iter()
-                .find(|(i, _)| *i == plane)
-                .is_some_and(|(_, bits)| bits[tile] & (1 << light) != 0)
+    pub fn shadow_clear(
+        &self,
+        p: &Prepared<'_>,
+        (plane, light): (usize, usize),
+        x: u32,
+        y: u32,
+    ) -> bool {
+        let Some(c) = self.clear.iter().find(|c| c.object == plane) else {
+            return false;
+        };
+        let slot = &c.bits[self.tile(x, y)];
+        let mut bits = slot.load(Ordering::Relaxed);
+        if bits & FOUND == 0 {
+            let (col, row) = (x / TILE, y / TILE);
+            bits = FOUND | u64::from(clear_lights(p, c, &self.cam, self.size, (col, row)));
+            slot.store(bits, Ordering::Relaxed);
+        }
+        light < 32 && bits & (1 << light) != 0
     }
 
     /// The candidates of pixel `(x, y)`.
@@ -211,62 +255,45 @@ impl Tiles {
     }
 }
 
-/// Per tile, a bit per light (of the first 32) whose shadow rays from the points
-/// of plane `plane` seen in the tile only a plane can block
+/// For tile `(col, row)`, a bit per light (of the first 32) whose shadow rays
+/// from the points of plane `c` seen in the tile only a plane can block
 /// ([`Footprints::region_clear`](super::shadow::Footprints::region_clear) of the
 /// region the tile's rays, one pixel wider on each side, meet the plane in).
 fn clear_lights(
     p: &Prepared<'_>,
-    plane: usize,
+    c: &Clear,
     cam: &CameraRays,
-    (point, normal): (Vec3, Vec3),
-    width: u32,
-    height: u32,
-) -> Vec<u32> {
-    let (across, down) = (width.div_ceil(TILE), height.div_ceil(TILE));
-    let lights = p.scene.lights.len().min(32);
-    let mut bits = vec![0; (across * down) as usize];
-    // Rows of tiles in parallel: the pool's other thread shares this part.
-    bits.par_chunks_mut(across as usize)
-        .zip(0..down)
-        .for_each(|(out, row)| {
-            for (col, bits) in (0..across).zip(out) {
-                let (x0, y0) = ((col * TILE) as f32 - 1.0, (row * TILE) as f32 - 1.0);
-                let x1 = (((col + 1) * TILE).min(width)) as f32 + 1.0;
-                let y1 = (((row + 1) * TILE).min(height)) as f32 + 1.0;
-                let mut corners = [Vec3::ZERO; 4];
-                let mut all = true;
-                for (c, (x, y)) in corners
-                    .iter_mut()
-                    .zip([(x0, y0), (x1, y0), (x0, y1), (x1, y1)])
-                {
-                    let ray = cam.ray(x, y);
-                    match hit_plane(&ray, point, normal) {
-                        Some(t) => *c = ray.at(t),
-                        None => all = false,
-                    }
-                }
-                if !all {
-                    continue;
-                }
-                // Starts are lifted by SURFACE_OFFSET; their points lie off the
-                // plane by rounding, a few ulps of their coordinates: twice the
-                // offset, plus 1e-5 of the largest coordinate, holds both.
-                let size = corners
-                    .iter()
-                    .map(|c| c.abs().max_element())
-                    .fold(1.0, f32::max);
-                let lift = 2.0 * SURFACE_OFFSET + 1e-5 * size;
-                for light in 0..lights {
-                    if p.footprints(plane, light)
-                        .is_some_and(|f| f.region_clear(&corners, lift))
-                    {
-                        *bits |= 1 << light;
-                    }
-                }
-            }
-        });
-    bits
+    (width, height): (u32, u32),
+    (col, row): (u32, u32),
+) -> u32 {
+    let (x0, y0) = ((col * TILE) as f32 - 1.0, (row * TILE) as f32 - 1.0);
+    let x1 = (((col + 1) * TILE).min(width)) as f32 + 1.0;
+    let y1 = (((row + 1) * TILE).min(height)) as f32 + 1.0;
+    let mut corners = [Vec3::ZERO; 4];
+    for (corner, (x, y)) in corners
+        .iter_mut()
+        .zip([(x0, y0), (x1, y0), (x0, y1), (x1, y1)])
+    {
+        let ray = cam.ray(x, y);
+        match hit_plane(&ray, c.point, c.normal) {
+            Some(t) => *corner = ray.at(t),
+            None => return 0,
+        }
+    }
+    // Starts are lifted by SURFACE_OFFSET; their points lie off the plane by
+    // rounding, a few ulps of their coordinates: twice the offset, plus 1e-5
+    // of the largest coordinate, holds both.
+    let size = corners
+        .iter()
+        .map(|c| c.abs().max_element())
+        .fold(1.0, f32::max);
+    let lift = 2.0 * SURFACE_OFFSET + 1e-5 * size;
+    (0..p.scene.lights.len().min(32))
+        .filter(|&light| {
+            p.footprints(c.object, light)
+                .is_some_and(|f| f.region_clear(&corners, lift))
+        })
+        .fold(0, |bits, light| bits | 1 << light)
 }
 
 /// Per tile, the objects (index, bounds in query order; `None` for planes) whose

@@ -224,7 +224,7 @@ impl Packet<'_, '_> {
         (start, to_light, dist): (&L3<S::F>, &L3<S::F>, S::F),
         lambert: S::F,
     ) -> S::M {
-        if self.tiles.shadow_clear(floor.object, li, x0, y) {
+        if self.tiles.shadow_clear(self.p, (floor.object, li), x0, y) {
             let mut blocked = s.mask(0);
             for &k in self.p.planes() {
                 blocked = blocked | S::lt(self.plane_hits(s, k, start, to_light), dist);
