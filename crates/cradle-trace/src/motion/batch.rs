@@ -26,39 +26,17 @@ const N: usize = 8;
 const SLACK: f32 = 1.0001;
 
 /// Up to eight segments, each with its pixel and its cells, in structure of
-/// arrays. Unused lanes hold an empty box, which meets nothing.
-#[derive(Debug, Clone)]
+/// arrays. Unused lanes are never tested.
+#[derive(Debug, Clone, Default)]
 pub(crate) struct Batch {
     n: usize,
-    /// Start, direction (end minus start), and the box of each segment.
+    /// Start and end of each segment, axis by axis.
     p: [[f32; N]; 3],
-    d: [[f32; N]; 3],
-    lo: [[f32; N]; 3],
-    hi: [[f32; N]; 3],
+    q: [[f32; N]; 3],
     /// The pixel (index in its row) of each segment.
     who: [u32; N],
     /// Its cells that meet the moved ones.
     cells: [Cells; N],
-    segs: [Seg; N],
-}
-
-impl Default for Batch {
-    fn default() -> Self {
-        let zero = Seg {
-            a: Vec3::ZERO,
-            b: Vec3::ZERO,
-        };
-        Self {
-            n: 0,
-            p: [[0.0; N]; 3],
-            d: [[0.0; N]; 3],
-            lo: [[f32::INFINITY; N]; 3],
-            hi: [[f32::NEG_INFINITY; N]; 3],
-            who: [0; N],
-            cells: [0; N],
-            segs: [zero; N],
-        }
-    }
 }
 
 impl Batch {
@@ -67,17 +45,12 @@ impl Batch {
     #[inline(always)]
     pub(crate) fn push(&mut self, who: u32, cells: Cells, seg: &Seg) -> bool {
         let i = self.n;
-        let (p, q) = (seg.a, seg.b);
-        let (d, lo, hi) = (q - p, p.min(q), p.max(q));
         for j in 0..3 {
-            self.p[j][i] = p[j];
-            self.d[j][i] = d[j];
-            self.lo[j][i] = lo[j];
-            self.hi[j][i] = hi[j];
+            self.p[j][i] = seg.a[j];
+            self.q[j][i] = seg.b[j];
         }
         self.who[i] = who;
         self.cells[i] = cells;
-        self.segs[i] = *seg;
         self.n += 1;
         self.n == N
     }
@@ -91,8 +64,12 @@ impl Batch {
             return;
         }
         let l3 = |v: &[[f32; N]; 3]| [s.load(&v[0]), s.load(&v[1]), s.load(&v[2])];
-        let (p, d, lo, hi) = (l3(&self.p), l3(&self.d), l3(&self.lo), l3(&self.hi));
+        let (p, q) = (l3(&self.p), l3(&self.q));
+        let d = [q[0] - p[0], q[1] - p[1], q[2] - p[2]];
+        let lo = [S::min(p[0], q[0]), S::min(p[1], q[1]), S::min(p[2], q[2])];
+        let hi = [S::max(p[0], q[0]), S::max(p[1], q[1]), S::max(p[2], q[2])];
         let d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+        let valid = ((1u16 << self.n) - 1) as u8;
         let gt = |a, b| S::lt(b, a);
         let tiny = s.splat(1e-12);
         for (j, (shape_cells, near)) in set.nears().iter().enumerate() {
@@ -103,7 +80,7 @@ impl Batch {
                 & S::le(lo[0], s.splat(k.hi.x))
                 & S::le(lo[1], s.splat(k.hi.y))
                 & S::le(lo[2], s.splat(k.hi.z));
-            let inside = S::bits(inside);
+            let inside = S::bits(inside) & valid;
             if inside == 0 {
                 continue;
             }
@@ -137,18 +114,14 @@ impl Batch {
                 let i = maybe.trailing_zeros() as usize;
                 maybe &= maybe - 1;
                 let who = self.who[i];
-                if !hit.has(who as usize)
-                    && shape_cells & self.cells[i] != 0
-                    && near.meets(&self.segs[i])
-                {
+                let at = |v: &[[f32; N]; 3]| Vec3::new(v[0][i], v[1][i], v[2][i]);
+                let seg = Seg {
+                    a: at(&self.p),
+                    b: at(&self.q),
+                };
+                if !hit.has(who as usize) && shape_cells & self.cells[i] != 0 && near.meets(&seg) {
                     hit.set(who as usize);
                 }
-            }
-        }
-        for i in 0..self.n {
-            for j in 0..3 {
-                self.lo[j][i] = f32::INFINITY;
-                self.hi[j][i] = f32::NEG_INFINITY;
             }
         }
         self.n = 0;
