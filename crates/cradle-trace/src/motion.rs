@@ -53,6 +53,7 @@ impl MotionGrid {
 
     /// The cells a box from `lo` to `hi` overlaps (0 when it misses the grid).
     #[must_use]
+    #[inline]
     pub fn cells(&self, lo: Vec3, hi: Vec3) -> Cells {
         let (lo, hi) = (lo - self.pad, hi + self.pad);
         if lo.cmpgt(self.bounds.max).any() || hi.cmplt(self.bounds.min).any() {
