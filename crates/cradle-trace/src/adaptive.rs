@@ -209,7 +209,11 @@ impl Frame<'_> {
             dirty,
             changed,
         } = *base;
-        if flips.is_empty() && dirty.is_empty() && changed.is_empty() && !rm.meets(moved.cells) {
+        if flips.is_empty()
+            && dirty.is_empty()
+            && changed.is_empty()
+            && !moved.reaches(y as usize, rm)
+        {
             return 0;
         }
         let show_base = |row: &mut [u8], x: usize| {
@@ -235,7 +239,7 @@ impl Frame<'_> {
         // So are edges whose other samples' segments come near a moved object
         // (only edge pixels have cells in `rm`, so its blocks skip the others),
         // and those whose base pixel, sample 0, was traced again.
-        if let Some(touched) = moved.dirty(rm) {
+        if let Some(touched) = moved.dirty(y as usize, rm) {
             redo.extend(touched.iter().map(|&x| x as usize).filter(|&x| is[x]));
         }
         redo.extend(dirty.iter().map(|&x| x as usize).filter(|&x| is[x]));

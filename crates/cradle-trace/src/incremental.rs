@@ -3,10 +3,12 @@
 //! other pixel's bytes, so the result equals a full render byte for byte.
 
 use super::adaptive::Layers;
+use super::camera::CameraRays;
 use super::color::Image;
+use super::geometry::Aabb;
 use super::motion::{Cells, MotionGrid, Near, NearSet};
 use super::render::{Frame, RenderOptions};
-use super::retrace::{Moved, RowMotion};
+use super::retrace::{Moved, Piece, RowMotion, Spans};
 use super::scene::Scene;
 use glam::Vec3;
 use rayon::prelude::*;
@@ -64,8 +66,9 @@ pub struct Incremental {
 }
 
 /// The objects that moved from `before` to `after` (same objects in the same
-/// order), where they were and where they are: their motion cells and shapes.
-fn moved(grid: &MotionGrid, before: &Scene, after: &Scene) -> Moved {
+/// order), where they were and where they are: their motion cells and shapes,
+/// and where `cam` sees them, their mirror images and their shadows (`Spans`).
+fn moved(grid: &MotionGrid, cam: &CameraRays, before: &Scene, after: &Scene) -> Moved {
     let mut out = Moved {
         lo: Vec3::INFINITY,
         hi: Vec3::NEG_INFINITY,
@@ -78,12 +81,14 @@ fn moved(grid: &MotionGrid, before: &Scene, after: &Scene) -> Moved {
         .filter(|(a, b)| a.moving && a.shape != b.shape)
         .flat_map(|(a, b)| [&a.shape, &b.shape]);
     let mut near = Vec::new();
+    let mut boxes = Vec::new();
     for s in shapes {
         let cells = shape_cells(grid, s);
         out.cells |= cells;
         if let Some(n) = Near::of(s) {
             (out.lo, out.hi) = (out.lo.min(n.lo()), out.hi.max(n.hi()));
             near.push((cells, n));
+            near_pieces(s, &mut boxes);
         } else {
             // A moving plane (none is): every segment may meet it.
             out.cells = Cells::MAX;
@@ -91,7 +96,31 @@ fn moved(grid: &MotionGrid, before: &Scene, after: &Scene) -> Moved {
         }
     }
     out.near = NearSet::new(near);
+    out.spans = Spans::new(cam, after, (!out.coarse).then_some(&boxes[..]));
     out
+}
+
+/// Pieces around `shape` grown as [`Near::of`] grows its box, appended to
+/// `out`: a ball whole; a string or rod as the boxes of 32 pieces along it
+/// (a thin slanted string then shows as a thin band on the screen).
+fn near_pieces(shape: &super::scene::Shape, out: &mut Vec<Piece>) {
+    use super::scene::Shape;
+    const PIECES: u32 = 32;
+    match *shape {
+        Shape::Cylinder { a, b, radius } => {
+            let grow = Vec3::splat(radius + 2.0 * Near::PAD);
+            out.extend((0..PIECES).map(|i| {
+                let p = a.lerp(b, i as f32 / PIECES as f32);
+                let q = a.lerp(b, (i + 1) as f32 / PIECES as f32);
+                Piece::Box(Aabb {
+                    min: p.min(q) - grow,
+                    max: p.max(q) + grow,
+                })
+            }));
+        }
+        Shape::Sphere { centre, radius } => out.push(Piece::Ball(centre, radius + 2.0 * Near::PAD)),
+        Shape::Plane { .. } => {}
+    }
 }
 
 /// The cells `shape` overlaps: a cylinder's as the cells of 8 pieces along it,
@@ -130,7 +159,7 @@ impl Incremental {
                 .is_some_and(|l| same_but_motion(l, scene));
         self.full = !reuse;
         if let (true, Some(grid), Some(last)) = (reuse, frame.motion, self.last.as_ref()) {
-            let moved = moved(&grid, last, scene);
+            let moved = moved(&grid, frame.camera(), last, scene);
             let img = self.image.as_mut().expect("checked above");
             if let (Some(threshold), Some(layers)) = (adaptive, self.layers.as_mut()) {
                 self.retraced = frame.adaptive_next(threshold, layers, img, &moved);

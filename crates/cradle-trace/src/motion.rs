@@ -145,7 +145,9 @@ pub struct Seg {
 
 /// Which cells of the motion grid the rays of one pixel passed through, and their
 /// segments inside its box: a pixel none of whose segments comes near an object
-/// that moved keeps its colour.
+/// that moved keeps its colour. The cells leave out the pixel's free segments
+/// (see [`Motion::free`]), which the incremental filter finds on the screen
+/// instead (`screen`).
 #[derive(Debug, Clone)]
 pub struct Motion {
     /// The grid, or `None` to track nothing.
@@ -154,6 +156,11 @@ pub struct Motion {
     pub mask: Cells,
     /// Segments inside the box so far, appended (a row's buffer, lent).
     pub segs: Vec<Seg>,
+    /// Whether the next segment noted is free: a camera ray, or a ray from where
+    /// a camera ray met a plane (its mirror ray, its shadow rays). Its segment is
+    /// kept but its cells are not: whether it comes near a moved shape shows on
+    /// the screen (`screen::Spans`). [`Motion::segment`] clears it.
+    pub free: bool,
 }
 
 impl Motion {
@@ -170,15 +177,20 @@ impl Motion {
             grid,
             mask: 0,
             segs,
+            free: false,
         }
     }
 
-    /// Notes the segment of `ray` from its start to `t_max`.
+    /// Notes the segment of `ray` from its start to `t_max`, with its cells
+    /// unless it is free ([`Self::free`], which it clears).
     pub(crate) fn segment(&mut self, ray: &Ray, t_max: f32) {
+        let free = std::mem::take(&mut self.free);
         if let Some(g) = &self.grid
             && let Some(s) = g.clip(ray, t_max)
         {
-            self.mask |= g.cells(s.a.min(s.b), s.a.max(s.b));
+            if !free {
+                self.mask |= g.cells(s.a.min(s.b), s.a.max(s.b));
+            }
             self.segs.push(s);
         }
     }

@@ -192,10 +192,16 @@ impl Packet<'_, '_> {
     }
 
     /// What `f` returns, given a `Motion` for lane `i` (lent the scratch
-    /// buffer) whose cells and segments then go to the lane's in a tracked frame:
-    /// the scalar path's tracing of one lane.
-    pub(crate) fn in_lane(&self, i: usize, f: impl FnOnce(&mut Motion) -> Vec3) -> Vec3 {
+    /// buffer; its first segment `free` or not, `Motion::free`) whose cells and
+    /// segments then go to the lane's in a tracked frame: the scalar path's
+    /// tracing of one lane.
+    pub(crate) fn in_lane(
+        &self,
+        (i, free): (usize, bool),
+        f: impl FnOnce(&mut Motion) -> Vec3,
+    ) -> Vec3 {
         let mut motion = Motion::with(self.motion, self.scratch.take());
+        motion.free = free;
         let c = f(&mut motion);
         if self.motion.is_some() {
             let m = &self.marks.as_array_of_cells()[i];
@@ -314,7 +320,8 @@ impl Packet<'_, '_> {
             self.nearest_of(s, others, &d, t)
         };
         let on_floor = !front;
-        self.note_lanes(s, on_floor, (&splat3(s, c.origin), &d), t);
+        // Camera rays: free (`Motion::free`).
+        self.note_lanes(s, (on_floor, 0xFF), (&splat3(s, c.origin), &d), t);
         // closest_among: the normal faces the ray (`denom` is normal.dot(dir)).
         let back = S::lt(k(0.0), denom);
         let nn = L3 {
@@ -342,6 +349,7 @@ impl Packet<'_, '_> {
                 d,
                 depth: 0,
                 weight: k(1.0),
+                free: 0,
             };
             let cradle = self.bounce(s, &ray, front, Some((0, which)));
             color = vec::select3::<S>(s.mask(front), &cradle, &color);

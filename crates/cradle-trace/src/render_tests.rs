@@ -81,8 +81,10 @@ fn packets_note_the_same_motion_cells_as_the_scalar_path() {
     let (fast, full) = (cells(&fast_rows), cells(&full_rows));
     let differing = fast.iter().zip(&full).filter(|(a, b)| a != b).count();
     assert_eq!(differing, 0, "pixels whose motion cells differ");
+    // Free segments (camera rays, and the floor's shadow and mirror rays) leave
+    // no cells: those are the cells of the rays off the ball and the rod.
     assert!(
-        full.iter().filter(|&&m| m != 0).count() > 1000,
+        full.iter().filter(|&&m| m != 0).count() > 200,
         "the motion box is seen"
     );
     // And the same segments, pixel by pixel (in any order).

@@ -9,8 +9,12 @@ use super::packet::{LANES, Packet};
 use super::render::Frame;
 use glam::Vec3;
 
+pub static CNT: [std::sync::atomic::AtomicUsize; 5] =
+    [const { std::sync::atomic::AtomicUsize::new(0) }; 5];
 mod moved;
+mod screen;
 pub(crate) use moved::Moved;
+pub(crate) use screen::{Piece, Spans};
 
 /// What a row's rays passed: per pixel its motion cells, and its segments in the
 /// motion box, `segs[span[k][0]..span[k][1]]` for pixel `k`. Without spans
@@ -207,7 +211,7 @@ impl Frame<'_> {
         mut notes: Option<&mut Notes<'_>>,
     ) -> usize {
         let width = self.width() as usize;
-        let Some(dirty) = moved.dirty(rm) else {
+        let Some(dirty) = moved.dirty(y as usize, rm) else {
             return 0;
         };
         let track = rm.tracked();

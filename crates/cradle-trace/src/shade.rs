@@ -11,7 +11,7 @@
 use super::geometry::Ray;
 use super::motion::Motion;
 use super::prepared::{Hit, Prepared};
-use super::scene::{Light, Material};
+use super::scene::{Light, Material, Shape};
 use super::tiles::Tiles;
 use glam::Vec3;
 
@@ -158,10 +158,15 @@ pub(crate) fn shade(
     motion: &mut Motion,
     tile: Option<(&Tiles, u32, u32)>,
 ) -> Vec3 {
+    // A camera ray's segment is free (`Motion::free`), and so are the shadow
+    // and mirror rays from where it met a plane.
+    motion.free |= depth == 0;
     motion.segment(ray, hit.map_or(f32::INFINITY, |h| h.t));
     let Some(hit) = hit else {
         return p.scene.background;
     };
+    let from_eye_on_plane =
+        depth == 0 && matches!(p.scene.objects[hit.object].shape, Shape::Plane { .. });
     let m = &p.scene.objects[hit.object].material;
     let point = ray.at(hit.t);
     let n = hit.normal;
@@ -192,6 +197,7 @@ pub(crate) fn shade(
             origin: start,
             dir: to_light,
         };
+        motion.free = from_eye_on_plane;
         if blocked(p, &shadow, dist, (hit, li), tile, motion) {
             continue;
         }
@@ -208,6 +214,7 @@ pub(crate) fn shade(
     if r > 0.0 && depth < p.scene.max_depth && weight * r * bound >= BAILOUT {
         let dir = ray.dir - 2.0 * ray.dir.dot(n) * n;
         let mirror = Ray { origin: start, dir };
+        motion.free = from_eye_on_plane;
         let reflected = reflect(
             p,
             &mirror,

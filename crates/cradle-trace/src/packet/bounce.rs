@@ -53,6 +53,9 @@ pub(super) struct Bounce<F> {
     pub(super) d: L3<F>,
     pub(super) depth: u32,
     pub(super) weight: F,
+    /// The lanes whose rays are free (`Motion::free`): mirror rays of camera
+    /// rays that met a plane (camera rays, at depth 0, are free in every lane).
+    pub(super) free: u8,
 }
 
 /// One level's result per lane: the local colour, the reflectivity of what
@@ -65,6 +68,7 @@ pub(super) struct Bounce8 {
     pub(super) d: V8,
     pub(super) depth: u32,
     pub(super) weight: F8,
+    pub(super) free: u8,
 }
 
 /// A lane build with its own compiled copy of [`Packet::bounce_lanes`]: one
@@ -123,6 +127,7 @@ impl Packet<'_, '_> {
             d: store3::<S>(&first.d),
             depth: first.depth,
             weight: S::store(first.weight),
+            free: first.free,
         };
         // (No closure here: one left as a call is not compiled for AVX2.)
         let mut known = None;
@@ -140,6 +145,7 @@ impl Packet<'_, '_> {
             d: load3(s, &b.d),
             depth: b.depth,
             weight: s.load(&b.weight),
+            free: b.free,
         };
         let mut known = None;
         if let Some((missed, which)) = found {
@@ -212,8 +218,16 @@ impl Packet<'_, '_> {
             origin: origin.lane(i),
             dir: dir.lane(i),
         };
+        // Free lanes (`Motion::free`): camera rays, and mirror rays of camera
+        // rays off a plane.
+        let free = if ray.depth == 0 { 0xFF } else { ray.free };
         // `shade` of no hit notes the ray to infinity.
-        self.note_lanes(s, missed, (&ray.origin, &ray.d), s.splat(f32::INFINITY));
+        self.note_lanes(
+            s,
+            (missed, free),
+            (&ray.origin, &ray.d),
+            s.splat(f32::INFINITY),
+        );
         let mut color = splat3(s, p.scene.background);
         let (mut reflectivity, mut reflect) = (s.splat(0.0), 0u8);
         let mut next = Bounce {
@@ -221,6 +235,7 @@ impl Packet<'_, '_> {
             d: color,
             depth: ray.depth + 1,
             weight: s.splat(0.0),
+            free: 0,
         };
         let mut scalar = (0u8, V8::ZERO);
         let mut todo = hitting;
@@ -235,7 +250,7 @@ impl Packet<'_, '_> {
                     let r = lane_ray(i);
                     let hit = p.hit_object(k, &r).map(|(t, n)| Hit::facing(&r, t, k, n));
                     let w = S::store(ray.weight)[i];
-                    let c = self.scalar_lane(i, &r, hit, (ray.depth, w));
+                    let c = self.scalar_lane((i, free), &r, hit, (ray.depth, w));
                     (scalar.1.x[i], scalar.1.y[i], scalar.1.z[i]) = (c.x, c.y, c.z);
                     scalar.0 |= 1 << i;
                 }
@@ -249,11 +264,11 @@ impl Packet<'_, '_> {
             let outside = !S::bits(inside);
             let lost = group & !S::bits(S::lt(t, s.splat(f32::INFINITY)));
             // `shade` notes its ray up to the hit.
-            self.note_lanes(s, group & !lost, (&ray.origin, &ray.d), t);
+            self.note_lanes(s, (group & !lost, free), (&ray.origin, &ray.d), t);
             for i in (0..LANES).filter(|i| lost >> i & 1 != 0) {
                 // Not met by the hit test after all: the scalar path.
                 let w = S::store(ray.weight)[i];
-                let c = self.scalar_lane(i, &lane_ray(i), None, (ray.depth, w));
+                let c = self.scalar_lane((i, free), &lane_ray(i), None, (ray.depth, w));
                 (scalar.1.x[i], scalar.1.y[i], scalar.1.z[i]) = (c.x, c.y, c.z);
                 scalar.0 |= 1 << i;
             }
@@ -265,19 +280,22 @@ impl Packet<'_, '_> {
             let point = ray.origin.add(&ray.d.scale(t));
             let start = point.add(&nn.scale(s.splat(SURFACE_OFFSET)));
             let object = &p.scene.objects[k];
+            let plane = matches!(object.shape, Shape::Plane { .. });
             let met = Met::Object {
                 object: k,
                 material: &object.material,
                 outside,
-                plane: matches!(object.shape, Shape::Plane { .. }),
+                plane,
             };
+            // A camera ray met a plane: its shadow and mirror rays are free.
+            let from_eye = if plane && ray.depth == 0 { group } else { 0 };
             let hit = Surface {
                 d: ray.d,
                 point,
                 start,
                 nn,
             };
-            let here = self.local_lanes(s, met, (0, 0), group, &hit);
+            let here = self.local_lanes(s, met, (0, 0), (group, from_eye), &hit);
             color = select3::<S>(s.mask(group), &here, &color);
             let r = object.material.reflective;
             if r > 0.0 && ray.depth < p.scene.max_depth {
@@ -291,6 +309,7 @@ impl Packet<'_, '_> {
                     next.origin = select3::<S>(m, &start, &next.origin);
                     next.d = select3::<S>(m, &d, &next.d);
                     next.weight = S::select(m, w, next.weight);
+                    next.free |= go & from_eye;
                     reflectivity = S::select(m, s.splat(r), reflectivity);
                     reflect |= go;
                 }
@@ -306,13 +325,13 @@ impl Packet<'_, '_> {
     /// the scalar path: `shade` from `hit` where known, else `trace`.
     fn scalar_lane(
         &self,
-        i: usize,
+        (i, free): (usize, u8),
         r: &Ray,
         hit: Option<Hit>,
         (depth, weight): (u32, f32),
     ) -> Vec3 {
         let (p, b) = (self.p, self.bound);
-        self.in_lane(i, |motion| match hit {
+        self.in_lane((i, free >> i & 1 != 0), |motion| match hit {
             Some(h) => shade(p, r, Some(h), depth, weight, b, motion, None),
             None => trace(p, r, depth, weight, b, motion),
         })

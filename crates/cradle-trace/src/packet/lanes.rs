@@ -57,7 +57,8 @@ impl Packet<'_, '_> {
         on: u8,
         hit: &Surface<S::F>,
     ) -> L3<S::F> {
-        let mut color = self.local_lanes(s, Met::Floor(floor), (x0, y), on, hit);
+        // Camera rays met the floor: their shadow rays are free.
+        let mut color = self.local_lanes(s, Met::Floor(floor), (x0, y), (on, 0xFF), hit);
         let r = floor.material.reflective;
         // weight * r * bound, at weight 1.
         if r > 0.0 && 0 < self.p.scene.max_depth && r * self.bound >= BAILOUT {
@@ -71,14 +72,15 @@ impl Packet<'_, '_> {
 
     /// `shade`'s lights of what the lanes `on` met (`met`) at `hit`, before
     /// any reflection: ambient, Lambert and Phong terms, each light's shadow
-    /// rays traced over the lanes.
+    /// rays traced over the lanes (free in the lanes of `free`,
+    /// `Motion::free`).
     #[inline(always)]
     pub(super) fn local_lanes<S: Simd>(
         &self,
         s: S,
         met: Met<'_>,
         (x0, y): (u32, u32),
-        on: u8,
+        (on, free): (u8, u8),
         hit: &Surface<S::F>,
     ) -> L3<S::F> {
         let Surface {
@@ -125,7 +127,7 @@ impl Packet<'_, '_> {
             let want = S::select(s.mask(on), lambert, k(0.0));
             // !(lambert <= 0): a NaN lambert is traced, as in the scalar code.
             let traced = S::bits(!S::le(want, k(0.0)));
-            self.note_lanes(s, traced, (start, &to_light), dist);
+            self.note_lanes(s, (traced, free), (start, &to_light), dist);
             let rays = (start, &to_light, dist);
             let blocked = match met {
                 Met::Floor(floor) => self.shadows(s, floor, (x0, y, li), rays, want),
@@ -306,6 +308,8 @@ impl Packet<'_, '_> {
             d: dir,
             depth: 1,
             weight: s.splat(r),
+            // Mirror rays of camera rays off the floor: free.
+            free: 0xFF,
         };
         self.bounce(s, &mirror, on_floor, found)
     }

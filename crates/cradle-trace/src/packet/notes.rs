@@ -18,13 +18,14 @@ use glam::Vec3;
 
 impl Packet<'_, '_> {
     /// In a tracked frame, notes for each lane of `on` the segment of its ray
-    /// from `origin` along `dir` up to `t`: its cells, and its part in the
-    /// motion box (lane by lane, in order).
+    /// from `origin` along `dir` up to `t`: its cells (but not in the lanes of
+    /// `free`, as `Motion::free`), and its part in the motion box (lane by
+    /// lane, in order).
     #[inline(always)]
     pub(super) fn note_lanes<S: Simd>(
         &self,
         s: S,
-        on: u8,
+        (on, free): (u8, u8),
         (origin, dir): (&L3<S::F>, &L3<S::F>),
         t: S::F,
     ) {
@@ -71,8 +72,10 @@ impl Packet<'_, '_> {
                 dir: d.lane(i),
             };
             if let Some(seg) = MotionGrid::clip_slabs(&ray, (lo.lane(i), hi.lane(i)), t[i]) {
-                let m = &marks[i];
-                m.set(m.get() | g.cells(seg.a.min(seg.b), seg.a.max(seg.b)));
+                if free >> i & 1 == 0 {
+                    let m = &marks[i];
+                    m.set(m.get() | g.cells(seg.a.min(seg.b), seg.a.max(seg.b)));
+                }
                 segs.push((i as u8, seg));
             }
         }

@@ -23,6 +23,7 @@ impl Packet<'_, '_> {
             d: V8::ZERO,
             depth: 0,
             weight: [1.0; LANES],
+            free: 0,
         };
         let mut live = 0u8;
         for (i, &(x, y)) in at.iter().enumerate() {

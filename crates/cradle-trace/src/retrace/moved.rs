@@ -2,7 +2,7 @@
 //! changed: the motion filter of incremental frames (cells first, then the
 //! segments of the pixels they leave, eight at a time, against the moved shapes).
 
-use super::{BLOCK, RowMotion};
+use super::{BLOCK, RowMotion, Spans};
 use crate::bits::BitRoom;
 use crate::motion::{Batch, Cells, NearSet};
 #[cfg(target_arch = "x86_64")]
@@ -23,34 +23,44 @@ pub(crate) struct Moved {
     /// A moved shape has no [`crate::motion::Near`] (a plane): the cells alone
     /// decide.
     pub(crate) coarse: bool,
+    /// Per row, where the moved shapes may meet pixels' free segments, which
+    /// leave no cells (`Motion::free`).
+    pub(crate) spans: Spans,
 }
 
 impl Moved {
-    /// The pixels of `rm` (sealed) that may have changed, in order; `None` when
-    /// no pixel may. A pixel may have changed when its cells meet the moved
-    /// ones and (in a tracked record of a frame without a moved plane) one of
-    /// its segments near the moved shapes' box comes within a moved shape whose
-    /// cells meet its own ([`crate::motion::Near::meets`]). Blocks no moved cell
-    /// reaches are skipped whole; the segments are tested eight at a time
-    /// ([`Batch`]).
-    pub(crate) fn dirty(&self, rm: &RowMotion) -> Option<Vec<u32>> {
-        if !rm.meets(self.cells) {
+    /// Whether the moved shapes may reach a pixel of row `y`, whose record is
+    /// `rm` (sealed).
+    pub(crate) fn reaches(&self, y: usize, rm: &RowMotion) -> bool {
+        rm.meets(self.cells) || !self.spans.row(y).is_empty()
+    }
+
+    /// The pixels of row `y`, whose record is `rm` (sealed), that may have
+    /// changed, in order; `None` when no pixel may. A pixel may have changed
+    /// when its cells meet the moved ones or it lies in the row's [`Spans`],
+    /// and (in a tracked record of a frame without a moved plane) one of its
+    /// segments near the moved shapes' box comes within a moved shape whose
+    /// cells meet its own, or any moved shape for a pixel in the spans
+    /// ([`crate::motion::Near::meets`]). Blocks neither reaches are skipped
+    /// whole; the segments are tested eight at a time ([`Batch`]).
+    pub(crate) fn dirty(&self, y: usize, rm: &RowMotion) -> Option<Vec<u32>> {
+        if !self.reaches(y, rm) {
             return None;
         }
         #[cfg(target_arch = "x86_64")]
         if let Some(s) = Avx2::detect() {
             // SAFETY: the token proves the CPU has AVX2.
             #[expect(unsafe_code, reason = "the run-time dispatch to the AVX2 build")]
-            return unsafe { self.dirty_avx2(s, rm) };
+            return unsafe { self.dirty_avx2(s, y, rm) };
         }
-        self.dirty_with(Portable, rm)
+        self.dirty_with(Portable, y, rm)
     }
 
     /// [`Self::dirty`] compiled for AVX2.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
-    fn dirty_avx2(&self, s: Avx2, rm: &RowMotion) -> Option<Vec<u32>> {
-        self.dirty_with(s, rm)
+    fn dirty_avx2(&self, s: Avx2, y: usize, rm: &RowMotion) -> Option<Vec<u32>> {
+        self.dirty_with(s, y, rm)
     }
 
     /// [`Self::dirty`] after its row test, in lane build `s`.
@@ -59,19 +69,35 @@ impl Moved {
         reason = "inlined into each build, so the AVX2 one compiles it for AVX2"
     )]
     #[inline(always)]
-    fn dirty_with<S: Simd>(&self, s: S, rm: &RowMotion) -> Option<Vec<u32>> {
+    fn dirty_with<S: Simd>(&self, s: S, y: usize, rm: &RowMotion) -> Option<Vec<u32>> {
         let n = rm.cells.len();
         let cells_only = !rm.tracked() || self.coarse;
         let mut room = BitRoom::new();
         let mut hit = room.row(n);
         let mut batch = Batch::default();
+        let runs = self.spans.row(y);
+        // The first run that ends after the pixel at hand (pixels ascend).
+        let mut r = 0;
         for (b, &c) in rm.blocks.iter().enumerate() {
-            if c & self.cells == 0 {
+            let (x0, x1) = (b * BLOCK, ((b + 1) * BLOCK).min(n));
+            while r < runs.len() && runs[r].1 as usize <= x0 {
+                r += 1;
+            }
+            if c & self.cells == 0 && runs.get(r).is_none_or(|run| run.0 as usize >= x1) {
                 continue;
             }
             // Plain loops: a closure would stay a call, outside the AVX2 build.
-            for k in b * BLOCK..((b + 1) * BLOCK).min(n) {
-                let cells = rm.cells[k] & self.cells;
+            for k in x0..x1 {
+                while r < runs.len() && runs[r].1 as usize <= k {
+                    r += 1;
+                }
+                // In a run, any moved shape may meet a free segment.
+                let in_run = runs.get(r).is_some_and(|run| run.0 as usize <= k);
+                let cells = if in_run {
+                    Cells::MAX
+                } else {
+                    rm.cells[k] & self.cells
+                };
                 if cells == 0 {
                     continue;
                 }

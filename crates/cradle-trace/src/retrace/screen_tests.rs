@@ -1,0 +1,151 @@
+//! The screen half of the motion filter: a ball's screen box under each map
+//! holds its image and no more; a row's runs hold the pixels that see it.
+
+use super::{Map, Piece, Spans, ball_box, maps};
+use crate::camera::CameraRays;
+use crate::scene::{Camera, Light, Material, Object, Scene, Shape};
+use glam::Vec3;
+
+/// A floor, a ball above it, two lights (a point and a directional one).
+fn scene() -> Scene {
+    let m = Material {
+        color: Vec3::splat(0.5),
+        specular: None,
+        reflective: 0.3,
+        checker: None,
+    };
+    Scene {
+        objects: vec![Object {
+            shape: Shape::Plane {
+                point: Vec3::ZERO,
+                normal: Vec3::Y,
+            },
+            material: m,
+            moving: false,
+        }],
+        lights: vec![
+            Light::Point {
+                position: Vec3::new(0.7, 0.6, 0.5),
+                color: Vec3::ONE,
+            },
+            Light::Directional {
+                direction: Vec3::new(0.3, -1.0, -0.2).normalize(),
+                color: Vec3::ONE,
+            },
+        ],
+        camera: Camera {
+            position: Vec3::new(0.1, 0.36, 0.6),
+            look_at: Vec3::new(0.0, 0.12, 0.0),
+            fov_deg: 31.0,
+        },
+        background: Vec3::ZERO,
+        size: (400, 200),
+        max_depth: 3,
+        samples: 1,
+        adaptive: None,
+        motion_bounds: None,
+    }
+}
+
+/// A map's image of point `p`, given the point light and the directional
+/// light's direction.
+type Image = fn(Vec3, Vec3, Vec3) -> Vec3;
+
+/// Points spread over the ball's surface (a Fibonacci sphere).
+fn surface(c: Vec3, r: f32, n: usize) -> impl Iterator<Item = Vec3> {
+    (0..n).map(move |i| {
+        let z = 1.0 - 2.0 * (i as f32 + 0.5) / n as f32;
+        let a = i as f32 * 2.399_963;
+        let s = (1.0 - z * z).sqrt();
+        c + r * Vec3::new(s * a.cos(), z, s * a.sin())
+    })
+}
+
+#[test]
+fn a_balls_screen_box_holds_its_image_and_no_more_under_every_map() {
+    let sc = scene();
+    let cam = CameraRays::new(&sc.camera, sc.size.0, sc.size.1);
+    let (c, r) = (Vec3::new(-0.05, 0.09, 0.01), 0.02);
+    let light = Vec3::new(0.7, 0.6, 0.5);
+    let along = Vec3::new(0.3, -1.0, -0.2).normalize();
+    // Each map's image of a point, worked out here on its own for the floor
+    // y = 0: mirrored, cast from the light, cast along the light.
+    let images: [(&str, Image); 4] = [
+        ("eye", |p, _, _| p),
+        ("mirror", |p, _, _| Vec3::new(p.x, -p.y, p.z)),
+        ("cast", |p, l, _| l + (p - l) * (l.y / (l.y - p.y))),
+        ("along", |p, _, d| p - d * (p.y / d.y)),
+    ];
+    let all = maps(&sc);
+    assert_eq!(all.len(), 4, "the eye, the floor's mirror, two casts");
+    for ((name, image), m) in images.iter().zip(&all) {
+        let [bx, by] = ball_box(&cam, (c, r), m).expect("a bounded image");
+        let (mut lo, mut hi) = ((f32::MAX, f32::MAX), (f32::MIN, f32::MIN));
+        for p in surface(c, r, 20_000) {
+            let (x, y) = cam.project(image(p, light, along)).expect("in front");
+            // Inside, to f32 rounding of a few hundred pixels.
+            assert!(
+                bx[0] - 1e-3 <= x && x <= bx[1] + 1e-3,
+                "{name}: x {x} out of {bx:?}"
+            );
+            assert!(
+                by[0] - 1e-3 <= y && y <= by[1] + 1e-3,
+                "{name}: y {y} out of {by:?}"
+            );
+            (lo, hi) = ((lo.0.min(x), lo.1.min(y)), (hi.0.max(x), hi.1.max(y)));
+        }
+        // And tight: 20,000 points reach within a tenth of a pixel of
+        // each side (the corners' box is pixels wider).
+        for (edge, got) in [(lo.0, bx[0]), (hi.0, bx[1]), (lo.1, by[0]), (hi.1, by[1])] {
+            assert!(
+                (edge - got).abs() < 0.1,
+                "{name}: side {got} but points reach {edge}"
+            );
+        }
+    }
+    // A light below the top of the ball: its shadow is unbounded.
+    let low = Map::Cast {
+        point: Vec3::ZERO,
+        normal: Vec3::Y,
+        from: Vec3::new(0.5, 0.1, 0.0),
+    };
+    let ball = Piece::Ball(c, r);
+    assert!(ball.screen_box(&cam, &low).is_none());
+}
+
+#[test]
+fn spans_hold_every_pixel_whose_camera_ray_meets_the_ball() {
+    let sc = scene();
+    let cam = CameraRays::new(&sc.camera, sc.size.0, sc.size.1);
+    let (c, r) = (Vec3::new(0.03, 0.1, 0.0), 0.02);
+    let spans = Spans::new(&cam, &sc, Some(&[Piece::Ball(c, r)]));
+    let (mut met, mut inside) = (0, 0);
+    for y in 0..sc.size.1 {
+        let runs = spans.row(y as usize);
+        for w in runs.windows(2) {
+            assert!(w[0].1 < w[1].0, "row {y}: runs ascend, apart");
+        }
+        let within = |x: u32| runs.iter().any(|&(a, b)| a <= x && x < b);
+        for x in 0..sc.size.0 {
+            inside += usize::from(within(x));
+            // Ray and ball, by the quadratic's discriminant.
+            let ray = cam.ray(x as f32 + 0.5, y as f32 + 0.5);
+            let oc = ray.origin - c;
+            let b = oc.dot(ray.dir);
+            if b * b - (oc.length_squared() - r * r) >= 0.0 {
+                met += 1;
+                assert!(within(x), "pixel ({x}, {y}) sees the ball");
+            }
+        }
+    }
+    assert!(met > 100, "{met} pixels see the ball");
+    // The eye's, the mirror's and two shadows' boxes, not the picture.
+    assert!(
+        inside < 8 * met,
+        "{inside} pixels in runs for {met} on the ball"
+    );
+    // Without pieces (a moved plane): every pixel.
+    let every = Spans::new(&cam, &sc, None);
+    assert!((0..200).all(|y| every.row(y) == [(0, 400)]));
+    assert!(every.row(200).is_empty());
+}
