@@ -72,7 +72,6 @@ pub fn bench_render(
                     };
                 }
             }
-            eprintln!("CNT {:?}", trace::retrace::CNT.iter().map(|c| c.swap(0, std::sync::atomic::Ordering::Relaxed) / (frames as usize + 1)).collect::<Vec<_>>());
             let row = Row {
                 threads: n,
                 mode,

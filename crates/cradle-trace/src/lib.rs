@@ -26,7 +26,7 @@ pub mod motion;
 pub mod packet;
 pub mod prepared;
 pub mod render;
-pub mod retrace;
+mod retrace;
 pub mod sampling;
 pub mod scene;
 pub mod shade;

@@ -9,8 +9,6 @@ use super::packet::{LANES, Packet};
 use super::render::Frame;
 use glam::Vec3;
 
-pub static CNT: [std::sync::atomic::AtomicUsize; 5] =
-    [const { std::sync::atomic::AtomicUsize::new(0) }; 5];
 mod moved;
 mod screen;
 pub(crate) use moved::Moved;
