@@ -5,7 +5,6 @@
 use super::adaptive::Layers;
 use super::camera::CameraRays;
 use super::color::Image;
-use super::geometry::Aabb;
 use super::motion::{Cells, MotionGrid, Near, NearSet};
 use super::render::{Frame, RenderOptions};
 use super::retrace::{Moved, Piece, RowMotion, Spans};
@@ -101,23 +100,12 @@ fn moved(grid: &MotionGrid, cam: &CameraRays, before: &Scene, after: &Scene) -> 
 }
 
 /// Pieces around `shape` grown as [`Near::of`] grows its box, appended to
-/// `out`: a ball whole; a string or rod as the boxes of 32 pieces along it
-/// (a thin slanted string then shows as a thin band on the screen).
+/// `out`: a ball, or a string or rod whole (on the screen, a band along the
+/// image of its axis).
 fn near_pieces(shape: &super::scene::Shape, out: &mut Vec<Piece>) {
     use super::scene::Shape;
-    const PIECES: u32 = 32;
     match *shape {
-        Shape::Cylinder { a, b, radius } => {
-            let grow = Vec3::splat(radius + 2.0 * Near::PAD);
-            out.extend((0..PIECES).map(|i| {
-                let p = a.lerp(b, i as f32 / PIECES as f32);
-                let q = a.lerp(b, (i + 1) as f32 / PIECES as f32);
-                Piece::Box(Aabb {
-                    min: p.min(q) - grow,
-                    max: p.max(q) + grow,
-                })
-            }));
-        }
+        Shape::Cylinder { a, b, radius } => out.push(Piece::Rod(a, b, radius + 2.0 * Near::PAD)),
         Shape::Sphere { centre, radius } => out.push(Piece::Ball(centre, radius + 2.0 * Near::PAD)),
         Shape::Plane { .. } => {}
     }

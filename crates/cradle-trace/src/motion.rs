@@ -1,8 +1,10 @@
 //! Motion tracking for incremental frames: the box every moving object stays in,
 //! cut into 32 x 4 x 1 cells, and per pixel the set of cells its rays passed
 //! through (one bit each in a `u128`) and the segments of its rays inside the
-//! box. `shade` notes both as it traces; `incremental` re-traces the pixels whose
-//! cells meet those of moved objects and one of whose segments comes near a moved
+//! box. `shade` notes both as it traces (free segments, [`Motion::free`], leave
+//! no cells: the filter finds those pixels on the screen); `incremental`
+//! re-traces the pixels whose cells meet those of moved objects, or that lie
+//! where a moved object shows, and one of whose segments comes near a moved
 //! object, where it was or where it is ([`Near`]).
 
 use super::geometry::{Aabb, Ray};

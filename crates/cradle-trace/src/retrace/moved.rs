@@ -1,6 +1,7 @@
 //! What moved since the last frame, and which pixels of a row it may have
-//! changed: the motion filter of incremental frames (cells first, then the
-//! segments of the pixels they leave, eight at a time, against the moved shapes).
+//! changed: the motion filter of incremental frames (cells and the screen's
+//! runs first, `screen`, then the segments of the pixels they leave, eight at a
+//! time, against the moved shapes).
 
 use super::{BLOCK, RowMotion, Spans};
 use crate::bits::BitRoom;

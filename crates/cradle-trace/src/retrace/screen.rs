@@ -12,7 +12,10 @@
 use crate::camera::CameraRays;
 use crate::geometry::Aabb;
 use crate::scene::{Light, Scene, Shape};
-use glam::{DVec3, Vec3};
+use glam::Vec3;
+
+mod ball;
+use ball::ball_box;
 
 /// Pixels added on each side of a region's screen box: 1 because a pixel's
 /// samples lie anywhere in it, 1 more for every rounding on the way (the f32
@@ -37,14 +40,29 @@ impl Spans {
         let (w, h) = scene.size;
         let mut cover: Vec<(u32, u32, u32)> = Vec::new();
         let whole = [[0.0, w as f32], [0.0, h as f32]];
-        let mut add = |r: Option<[[f32; 2]; 2]>| {
-            let [[x0, x1], [y0, y1]] = r.unwrap_or(whole);
-            // Clamped to the picture (NaN to 0: `as` saturates).
-            let px = |v: f32, n: u32| (v.max(0.0) as u32).min(n);
-            let (x0, x1) = (px((x0 - PAD_PX).floor(), w), px((x1 + PAD_PX).ceil(), w));
-            let (y0, y1) = (px((y0 - PAD_PX).floor(), h), px((y1 + PAD_PX).ceil(), h));
-            if x0 < x1 {
-                cover.extend((y0..y1).map(|y| (y, x0, x1)));
+        // Clamped to the picture (NaN to 0: `as` saturates).
+        let px = |v: f32, n: u32| (v.max(0.0) as u32).min(n);
+        let mut add = |r: Option<Region>| match r.unwrap_or(Region::Box(whole)) {
+            Region::Box([[x0, x1], [y0, y1]]) => {
+                let (x0, x1) = (px((x0 - PAD_PX).floor(), w), px((x1 + PAD_PX).ceil(), w));
+                let (y0, y1) = (px((y0 - PAD_PX).floor(), h), px((y1 + PAD_PX).ceil(), h));
+                if x0 < x1 {
+                    cover.extend((y0..y1).map(|y| (y, x0, x1)));
+                }
+            }
+            Region::Quad(q) => {
+                // Padded already; per row, where the quad crosses the row's band.
+                let (y0, y1) = q
+                    .iter()
+                    .fold((f32::MAX, f32::MIN), |(a, b), p| (a.min(p.1), b.max(p.1)));
+                for y in px(y0.floor(), h)..px(y1.ceil(), h) {
+                    if let Some((x0, x1)) = band_x(&q, (y as f32, y as f32 + 1.0)) {
+                        let (x0, x1) = (px(x0.floor(), w), px(x1.ceil(), w));
+                        if x0 < x1 {
+                            cover.push((y, x0, x1));
+                        }
+                    }
+                }
             }
         };
         match pieces {
@@ -53,7 +71,7 @@ impl Spans {
                 let maps = maps(scene);
                 for piece in pieces {
                     for m in &maps {
-                        add(piece.screen_box(cam, m));
+                        add(piece.region(cam, m));
                     }
                 }
             }
@@ -87,19 +105,36 @@ impl Spans {
 }
 
 /// A part of a moved shape, grown as [`crate::motion::Near`] grows it (and
-/// more): a box (a piece of a string), or a ball, whose screen box is worked out
-/// exactly as well ([`ball_box`]).
+/// more): a piece of a string or rod (its axis from one point to another and
+/// its grown radius), or a ball, whose screen box is worked out exactly as well
+/// ([`ball_box`]).
 #[derive(Debug, Clone, Copy)]
 pub(crate) enum Piece {
-    Box(Aabb),
+    Rod(Vec3, Vec3, f32),
     Ball(Vec3, f32),
 }
 
+/// Where a piece may show on the screen, in pixels: a box `[[x0, x1], [y0,
+/// y1]]` (padded when added), or a convex quad, padded.
+#[derive(Debug, Clone, Copy)]
+enum Region {
+    Box([[f32; 2]; 2]),
+    Quad([(f32, f32); 4]),
+}
+
 impl Piece {
-    /// Its screen box under `m` (`None`: every pixel).
+    /// Its region under `m` (`None`: every pixel).
+    fn region(&self, cam: &CameraRays, m: &Map) -> Option<Region> {
+        match *self {
+            Piece::Rod(a, b, g) => rod_region(cam, (a, b, g), m),
+            Piece::Ball(..) => self.screen_box(cam, m).map(Region::Box),
+        }
+    }
+
+    /// A ball's screen box under `m` (`None`: every pixel).
     fn screen_box(&self, cam: &CameraRays, m: &Map) -> Option<[[f32; 2]; 2]> {
         match *self {
-            Piece::Box(b) => screen_box(cam, &b, m),
+            Piece::Rod(..) => None,
             Piece::Ball(c, r) => {
                 let b = Aabb {
                     min: c - Vec3::splat(r),
@@ -224,75 +259,75 @@ fn screen_box(cam: &CameraRays, b: &Aabb, m: &Map) -> Option<[[f32; 2]; 2]> {
     Some(r)
 }
 
-/// A plane `n . x + d = 0` as `(n, d)`, in f64.
-type Plane4 = (DVec3, f64);
-
-/// The screen box of the image of the ball at `c` of radius `r` under `m`,
-/// `[[x0, x1], [y0, y1]]` in pixels, from the screen lines that touch it: a
-/// screen column (or row) is a plane through the eye, linear in the column's
-/// place `s`; where a point of the ball shows in column `s`, that plane (for a
-/// shadow, the plane through the light and the line where it cuts the plane
-/// of the shadow; for a mirror image, the plane against the mirrored ball)
-/// meets the ball, so `s` lies where the quadratic `dist^2 - r^2` (times the
-/// normal's length squared) is not positive: between its roots. `None` where
-/// that set is not an interval.
-fn ball_box(cam: &CameraRays, (c, r): (Vec3, f32), m: &Map) -> Option<[[f32; 2]; 2]> {
-    let d = |v: Vec3| v.as_dvec3();
-    let (o, f, right, up) = (d(cam.origin), d(cam.forward), d(cam.right), d(cam.up));
-    let mut c = d(c);
-    // The cast's plane and light (homogeneous: w = 0 for a direction).
-    let mut cast: Option<(Plane4, DVec3, f64)> = None;
-    match *m {
-        Map::Eye => {}
-        Map::Mirror { point, normal } => {
-            let (p, n) = (d(point), d(normal));
-            c -= 2.0 * (c - p).dot(n) * n;
-        }
-        Map::Cast {
-            point,
-            normal,
-            from,
-        } => cast = Some(((d(normal), -d(normal).dot(d(point))), d(from), 1.0)),
-        Map::Along {
-            point,
-            normal,
-            along,
-        } => cast = Some(((d(normal), -d(normal).dot(d(point))), d(along), 0.0)),
-    }
-    let through_eye = |n: DVec3| (n, -n.dot(o));
-    // Column s: the plane through the eye holding `up` and `forward + right s`;
-    // row s: the one holding `right` and `forward + up s`.
-    let range = |(a, b): (Plane4, Plane4)| -> Option<[f64; 2]> {
-        let at = |p: Plane4, x: DVec3, w: f64| p.0.dot(x) + p.1 * w;
-        // Against the cast: the plane through the light and the line where
-        // plane p cuts the plane of the shadow, p (pi . L) - pi (p . L).
-        let lift = |p: Plane4| match cast {
-            None => p,
-            Some((pi, l, w)) => {
-                let (k, j) = (at(pi, l, w), at(p, l, w));
-                (p.0 * k - pi.0 * j, p.1 * k - pi.1 * j)
-            }
-        };
-        let (a, b) = (lift(a), lift(b));
-        let r2 = f64::from(r) * f64::from(r);
-        let (a0, a1) = (at(a, c, 1.0), at(b, c, 1.0));
-        let alpha = a1 * a1 - r2 * b.0.length_squared();
-        let beta = 2.0 * (a0 * a1 - r2 * a.0.dot(b.0));
-        let gamma = a0 * a0 - r2 * a.0.length_squared();
-        let disc = beta * beta - 4.0 * alpha * gamma;
-        // Not an interval (or a tiny, ill-conditioned one): the corners decide.
-        if alpha <= 1e-9 * (a1 * a1 + r2 * b.0.length_squared()) || disc < 0.0 {
+/// The region of the rod from `a` to `b` of radius `g` under `m`: the box
+/// around it (along its axis, and `g` either side across, which holds the
+/// capsule) has 8 corners whose images bound its image; on the screen they
+/// lie in a rectangle along the image of the axis (a straight line: every map
+/// keeps lines straight), padded by [`PAD_PX`]. `None` where a corner's image
+/// is unbounded or behind the eye.
+fn rod_region(cam: &CameraRays, (a, b, g): (Vec3, Vec3, f32), m: &Map) -> Option<Region> {
+    // (A piece of no length: any axis; the box then holds the ball around it.)
+    let w = (b - a).try_normalize().unwrap_or(Vec3::X);
+    let (e1, e2) = w.any_orthonormal_pair();
+    let (a, b) = (a - w * g, b + w * g);
+    let mut q = [(0.0f32, 0.0f32); 8];
+    for (i, q) in q.iter_mut().enumerate() {
+        let end = if i & 1 == 0 { a } else { b };
+        let s1 = if i & 2 == 0 { -g } else { g };
+        let s2 = if i & 4 == 0 { -g } else { g };
+        *q = cam.project(apply(m, end + e1 * s1 + e2 * s2)?)?;
+        if !(q.0.is_finite() && q.1.is_finite()) {
             return None;
         }
-        let q = disc.sqrt();
-        Some([(-beta - q) / (2.0 * alpha), (-beta + q) / (2.0 * alpha)])
+    }
+    // The axis on the screen: through the images of its ends.
+    let (o, e) = (cam.project(apply(m, a)?)?, cam.project(apply(m, b)?)?);
+    let (dx, dy) = (e.0 - o.0, e.1 - o.1);
+    let len = (dx * dx + dy * dy).sqrt();
+    if len.is_nan() || len <= 1e-3 {
+        let (lo, hi) = q
+            .iter()
+            .fold(((f32::MAX, f32::MAX), (f32::MIN, f32::MIN)), |(l, h), p| {
+                ((l.0.min(p.0), l.1.min(p.1)), (h.0.max(p.0), h.1.max(p.1)))
+            });
+        return Some(Region::Box([[lo.0, hi.0], [lo.1, hi.1]]));
+    }
+    let (u, v) = ((dx / len, dy / len), (-dy / len, dx / len));
+    let at = |p: &(f32, f32), d: (f32, f32)| (p.0 - o.0) * d.0 + (p.1 - o.1) * d.1;
+    let span = |d| {
+        q.iter().fold((f32::MAX, f32::MIN), |(l, h), p| {
+            (l.min(at(p, d)), h.max(at(p, d)))
+        })
     };
-    let sx = range((through_eye(up.cross(f)), through_eye(up.cross(right))))?;
-    let sy = range((through_eye(right.cross(f)), through_eye(right.cross(up))))?;
-    let (w, h) = (f64::from(cam.width), f64::from(cam.height));
-    let px = |s: f64| ((s + 1.0) * 0.5 * w) as f32;
-    let py = |s: f64| ((1.0 - s) * 0.5 * h) as f32;
-    Some([[px(sx[0]), px(sx[1])], [py(sy[1]), py(sy[0])]])
+    let ((t0, t1), (s0, s1)) = (span(u), span(v));
+    let (t0, t1, s0, s1) = (t0 - PAD_PX, t1 + PAD_PX, s0 - PAD_PX, s1 + PAD_PX);
+    let corner = |t: f32, s: f32| (o.0 + u.0 * t + v.0 * s, o.1 + u.1 * t + v.1 * s);
+    Some(Region::Quad([
+        corner(t0, s0),
+        corner(t1, s0),
+        corner(t1, s1),
+        corner(t0, s1),
+    ]))
+}
+
+/// The least and greatest x of the convex quad `q` within the band of rows
+/// from `y0` to `y1`: among its corners in the band and where its sides cross
+/// the band's edges. `None` where it misses the band.
+fn band_x(q: &[(f32, f32); 4], (y0, y1): (f32, f32)) -> Option<(f32, f32)> {
+    let (mut lo, mut hi) = (f32::MAX, f32::MIN);
+    for i in 0..4 {
+        let (p, r) = (q[i], q[(i + 1) % 4]);
+        if (y0..=y1).contains(&p.1) {
+            (lo, hi) = (lo.min(p.0), hi.max(p.0));
+        }
+        for y in [y0, y1] {
+            if (p.1 - y) * (r.1 - y) < 0.0 {
+                let x = p.0 + (r.0 - p.0) * ((y - p.1) / (r.1 - p.1));
+                (lo, hi) = (lo.min(x), hi.max(x));
+            }
+        }
+    }
+    (lo <= hi).then_some((lo, hi))
 }
 
 #[cfg(test)]

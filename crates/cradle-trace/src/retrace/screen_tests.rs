@@ -149,3 +149,56 @@ fn spans_hold_every_pixel_whose_camera_ray_meets_the_ball() {
     assert!((0..200).all(|y| every.row(y) == [(0, 400)]));
     assert!(every.row(200).is_empty());
 }
+
+#[test]
+fn a_slanted_rod_shows_as_a_thin_band_that_holds_it() {
+    // The eye alone (no plane, no light): the rod's own band.
+    let mut sc = scene();
+    sc.objects.clear();
+    sc.lights.clear();
+    let cam = CameraRays::new(&sc.camera, sc.size.0, sc.size.1);
+    let (a, b, r) = (
+        Vec3::new(-0.12, 0.04, 0.0),
+        Vec3::new(0.1, 0.22, 0.03),
+        0.002,
+    );
+    let spans = Spans::new(&cam, &sc, Some(&[Piece::Rod(a, b, r)]));
+    let within = |x: f32, y: f32| {
+        spans
+            .row(y as usize)
+            .iter()
+            .any(|&(p, q)| p as f32 <= x && x < q as f32)
+    };
+    // Points of the capsule's surface, along it and around it.
+    let (w, (e1, e2)) = (
+        (b - a).normalize(),
+        (b - a).normalize().any_orthonormal_pair(),
+    );
+    let (mut lo, mut hi) = (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN));
+    for i in 0..=400 {
+        for k in 0..16 {
+            let turn = k as f32 * std::f32::consts::TAU / 16.0;
+            let p = a.lerp(b, i as f32 / 400.0) + r * (e1 * turn.cos() + e2 * turn.sin());
+            let (x, y) = cam.project(p).expect("in front");
+            assert!(
+                within(x, y),
+                "a point of the rod at ({x}, {y}) is in no run"
+            );
+            (lo, hi) = (lo.min(Vec3::new(x, y, 0.0)), hi.max(Vec3::new(x, y, 0.0)));
+        }
+    }
+    // The ends' caps too.
+    for p in [a - w * r, b + w * r] {
+        let (x, y) = cam.project(p).expect("in front");
+        assert!(within(x, y), "a cap at ({x}, {y}) is in no run");
+    }
+    // A band, not the rod's screen box: a small part of it.
+    let inside: u32 = (0..sc.size.1 as usize)
+        .flat_map(|y| spans.row(y).iter().map(|&(p, q)| q - p))
+        .sum();
+    let boxed = (hi.x - lo.x) * (hi.y - lo.y);
+    assert!(
+        (inside as f32) < 0.25 * boxed,
+        "{inside} pixels in runs, the box {boxed}"
+    );
+}
