@@ -80,14 +80,14 @@ fn moved(grid: &MotionGrid, cam: &CameraRays, before: &Scene, after: &Scene) -> 
         .filter(|(a, b)| a.moving && a.shape != b.shape)
         .flat_map(|(a, b)| [&a.shape, &b.shape]);
     let mut near = Vec::new();
-    let mut boxes = Vec::new();
+    let mut pieces = Vec::new();
     for s in shapes {
         let cells = shape_cells(grid, s);
         out.cells |= cells;
         if let Some(n) = Near::of(s) {
             (out.lo, out.hi) = (out.lo.min(n.lo()), out.hi.max(n.hi()));
             near.push((cells, n));
-            near_pieces(s, &mut boxes);
+            near_pieces(s, &mut pieces);
         } else {
             // A moving plane (none is): every segment may meet it.
             out.cells = Cells::MAX;
@@ -95,7 +95,7 @@ fn moved(grid: &MotionGrid, cam: &CameraRays, before: &Scene, after: &Scene) -> 
         }
     }
     out.near = NearSet::new(near);
-    out.spans = Spans::new(cam, after, (!out.coarse).then_some(&boxes[..]));
+    out.spans = Spans::new(cam, after, (!out.coarse).then_some(&pieces[..]));
     out
 }
 

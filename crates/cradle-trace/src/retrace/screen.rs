@@ -4,10 +4,12 @@
 //! on the screen; the mirror ray of a camera ray off a plane only where the
 //! shape's mirror image in the plane shows; and a shadow ray from where a
 //! camera ray met a plane only where the shape's shadow on the plane shows.
-//! Each of those regions is bounded by the screen box of a few points (the
-//! corners of the shape's boxes, mirrored or cast onto the plane), padded; per
-//! row, [`Spans`] holds their union as runs of pixels. `Moved::dirty` takes a
-//! pixel in a run as a candidate whatever its cells.
+//! Each of those regions is bounded by the images of the corners of a box
+//! around the shape (mirrored or cast onto the plane, then seen): for a ball
+//! their screen box, met with the ball's exact one; for a string a rectangle
+//! along the image of its axis. Padded, per row, [`Spans`] holds their union
+//! as runs of pixels. `Moved::dirty` takes a pixel in a run as a candidate
+//! whatever its cells.
 
 use crate::camera::CameraRays;
 use crate::geometry::Aabb;
