@@ -185,11 +185,13 @@ impl Motion {
 
     /// Notes the segment of `ray` from its start to `t_max`, with its cells
     /// unless it is free ([`Self::free`], which it clears).
+    #[inline]
     pub(crate) fn segment(&mut self, ray: &Ray, t_max: f32) {
+        let Some(g) = &self.grid else {
+            return;
+        };
         let free = std::mem::take(&mut self.free);
-        if let Some(g) = &self.grid
-            && let Some(s) = g.clip(ray, t_max)
-        {
+        if let Some(s) = g.clip(ray, t_max) {
             if !free {
                 self.mask |= g.cells(s.a.min(s.b), s.a.max(s.b));
             }
