@@ -129,14 +129,6 @@ impl Piece {
     fn region(&self, cam: &CameraRays, m: &Map) -> Option<Region> {
         match *self {
             Piece::Rod(a, b, g) => rod_region(cam, (a, b, g), m),
-            Piece::Ball(..) => self.screen_box(cam, m).map(Region::Box),
-        }
-    }
-
-    /// A ball's screen box under `m` (`None`: every pixel).
-    fn screen_box(&self, cam: &CameraRays, m: &Map) -> Option<[[f32; 2]; 2]> {
-        match *self {
-            Piece::Rod(..) => None,
             Piece::Ball(c, r) => {
                 let b = Aabb {
                     min: c - Vec3::splat(r),
@@ -146,10 +138,10 @@ impl Piece {
                 // bounded, the exact one is tighter.
                 let [bx, by] = screen_box(cam, &b, m)?;
                 let Some([ex, ey]) = ball_box(cam, (c, r), m) else {
-                    return Some([bx, by]);
+                    return Some(Region::Box([bx, by]));
                 };
                 let meet = |a: [f32; 2], e: [f32; 2]| [a[0].max(e[0]), a[1].min(e[1])];
-                Some([meet(bx, ex), meet(by, ey)])
+                Some(Region::Box([meet(bx, ex), meet(by, ey)]))
             }
         }
     }

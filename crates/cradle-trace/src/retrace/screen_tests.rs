@@ -110,7 +110,7 @@ fn a_balls_screen_box_holds_its_image_and_no_more_under_every_map() {
         from: Vec3::new(0.5, 0.1, 0.0),
     };
     let ball = Piece::Ball(c, r);
-    assert!(ball.screen_box(&cam, &low).is_none());
+    assert!(ball.region(&cam, &low).is_none());
 }
 
 #[test]
