@@ -10,13 +10,18 @@
 //! again. Besides, every non-zero size goes to `resize_surface`, nothing is
 //! presented while resize events keep coming (until `RESIZE_SETTLE` after the
 //! last), and the window's size is checked again right before each render.
+//!
+//! The traced bytes are sRGB already: where the surface offers a plain format,
+//! pixels is built again with a plain texture and surface ([`plain_format`]),
+//! so that drawing them is a copy.
 
 use super::WindowError;
 use super::hud::Canvas;
 use super::panel::Panel;
 use super::session::{HudLine, Session};
 use crate::trace::Image;
-use pixels::{Pixels, ScalingMode, SurfaceTexture};
+use pixels::wgpu::TextureFormat;
+use pixels::{Pixels, PixelsBuilder, ScalingMode, SurfaceTexture};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 use winit::dpi::PhysicalSize;
@@ -38,6 +43,25 @@ fn scaling((bw, bh): (u32, u32), (ww, wh): (u32, u32)) -> ScalingMode {
     } else {
         ScalingMode::Fill
     }
+}
+
+/// The surface format without sRGB encoding that matches pixels' own (sRGB)
+/// choice, where the surface offers it. pixels' texture and surface are both
+/// sRGB by default, so its scaling pass decodes every texel to linear and
+/// encodes it back, for the same bytes. With both plain (an `Rgba8Unorm`
+/// texture and this surface) the same bytes reach the screen through a plain
+/// copy: under Mesa's lavapipe 8.5 -> 6 ms of CPU a frame (docs/performance.md).
+fn plain_format(pixels: &Pixels<'_>) -> Option<TextureFormat> {
+    plain_of(
+        pixels.surface_texture_format(),
+        &pixels.context().surface_capabilities.formats,
+    )
+}
+
+/// [`plain_format`] given the surface format chosen and those `offered`.
+fn plain_of(chosen: TextureFormat, offered: &[TextureFormat]) -> Option<TextureFormat> {
+    let plain = chosen.remove_srgb_suffix();
+    (plain != chosen && offered.contains(&plain)).then_some(plain)
 }
 
 /// The window and its framebuffer.
@@ -71,12 +95,22 @@ impl Surface {
         let size = window.inner_size();
         // SurfaceTexture::new asserts a non-zero size.
         let (sw, sh) = (size.width.max(1), size.height.max(1));
-        let mut pixels = Pixels::new(
-            width,
-            height,
-            SurfaceTexture::new(sw, sh, Arc::clone(&window)),
-        )
-        .map_err(|e| WindowError::NoAdapter(e.to_string()))?;
+        let texture = || SurfaceTexture::new(sw, sh, Arc::clone(&window));
+        let no_adapter = |e: pixels::Error| WindowError::NoAdapter(e.to_string());
+        let mut pixels = Pixels::new(width, height, texture()).map_err(no_adapter)?;
+        if let Some(plain) = plain_format(&pixels) {
+            // One surface per window: the first goes before the second is made.
+            drop(pixels);
+            pixels = PixelsBuilder::new(width, height, texture())
+                .texture_format(TextureFormat::Rgba8Unorm)
+                .surface_texture_format(plain)
+                .build()
+                .or_else(|e| {
+                    tracing::warn!("no {plain:?} surface after all ({e}); drawing through sRGB");
+                    Pixels::new(width, height, texture())
+                })
+                .map_err(no_adapter)?;
+        }
         pixels.set_scaling_mode(scaling((width, height), (sw, sh)));
         tracing::info!(
             "window {sw}x{sh}, framebuffer {width}x{height}, format {:?}",
@@ -248,8 +282,20 @@ impl Surface {
 
 #[cfg(test)]
 mod tests {
-    use super::scaling;
+    use super::{plain_of, scaling};
     use pixels::ScalingMode;
+    use pixels::wgpu::TextureFormat as F;
+
+    #[test]
+    fn the_plain_twin_of_an_srgb_surface_only_where_offered() {
+        let offered = [F::Bgra8UnormSrgb, F::Bgra8Unorm, F::Rgba16Float];
+        assert_eq!(plain_of(F::Bgra8UnormSrgb, &offered), Some(F::Bgra8Unorm));
+        // Not offered, or the surface already plain (or not 8-bit): as it is.
+        assert_eq!(plain_of(F::Rgba8UnormSrgb, &offered), None);
+        assert_eq!(plain_of(F::Bgra8UnormSrgb, &[F::Bgra8UnormSrgb]), None);
+        assert_eq!(plain_of(F::Bgra8Unorm, &offered), None);
+        assert_eq!(plain_of(F::Rgba16Float, &offered), None);
+    }
 
     #[test]
     fn pixel_by_pixel_only_at_exact_multiples() {
