@@ -150,11 +150,9 @@ pub(crate) struct Packet<'a, 'p> {
     pub(crate) motion: Option<MotionGrid>,
     /// The cells each lane's rays passed through (with `motion`).
     pub(crate) marks: Cell<[Cells; LANES]>,
-    /// The segments of the lanes' rays inside the motion box, with their lane, in
-    /// the order traced (with `motion`).
-    pub(crate) segs: RefCell<Vec<(u8, Seg)>>,
-    /// A buffer lent to the scalar path's `Motion` for a lane.
-    pub(crate) scratch: Cell<Vec<Seg>>,
+    /// The segments of each lane's rays inside the motion box, in the order
+    /// traced (with `motion`).
+    pub(crate) segs: RefCell<[Vec<Seg>; LANES]>,
     /// The linear colours of the last packet's lanes (those it wrote), as
     /// red, green and blue lanes: see [`Self::color`].
     pub(crate) colors: Cell<[F8; 3]>,
@@ -181,7 +179,7 @@ impl Packet<'_, '_> {
     pub(crate) fn fresh(&self) {
         if self.motion.is_some() {
             self.marks.set([0; LANES]);
-            self.segs.borrow_mut().clear();
+            self.segs.borrow_mut().iter_mut().for_each(Vec::clear);
         }
     }
 
@@ -191,26 +189,24 @@ impl Packet<'_, '_> {
         self.marks.get()
     }
 
-    /// What `f` returns, given a `Motion` for lane `i` (lent the scratch
-    /// buffer; its first segment `free` or not, `Motion::free`) whose cells and
-    /// segments then go to the lane's in a tracked frame: the scalar path's
-    /// tracing of one lane.
+    /// What `f` returns, given a `Motion` for lane `i` (lent the lane's
+    /// segments, to append to; its first segment `free` or not,
+    /// `Motion::free`) whose cells then go to the lane's in a tracked frame:
+    /// the scalar path's tracing of one lane.
     pub(crate) fn in_lane(
         &self,
         (i, free): (usize, bool),
         f: impl FnOnce(&mut Motion) -> Vec3,
     ) -> Vec3 {
-        let mut motion = Motion::with(self.motion, self.scratch.take());
+        let lent = std::mem::take(&mut self.segs.borrow_mut()[i]);
+        let mut motion = Motion::with(self.motion, lent);
         motion.free = free;
         let c = f(&mut motion);
         if self.motion.is_some() {
             let m = &self.marks.as_array_of_cells()[i];
             m.set(m.get() | motion.mask);
-            let mut segs = self.segs.borrow_mut();
-            segs.extend(motion.segs.drain(..).map(|s| (i as u8, s)));
         }
-        motion.segs.clear();
-        self.scratch.set(motion.segs);
+        self.segs.borrow_mut()[i] = motion.segs;
         c
     }
 
@@ -222,12 +218,7 @@ impl Packet<'_, '_> {
 
     /// Appends the segments lane `i` noted in the last packet to `out`.
     pub(crate) fn lane_segs(&self, i: usize, out: &mut Vec<Seg>) {
-        let segs = self.segs.borrow();
-        out.extend(
-            segs.iter()
-                .filter(|(l, _)| usize::from(*l) == i)
-                .map(|(_, s)| *s),
-        );
+        out.extend_from_slice(&self.segs.borrow()[i]);
     }
 
     /// Traces pixels `x0..x0 + 8` of row `y` at their centres into `out` (8 RGBA

@@ -169,13 +169,10 @@ impl<'a> Frame<'a> {
             bound: self.bound,
             motion: self.motion,
             marks: std::cell::Cell::new([0; LANES]),
-            // Room for a row's worth of lanes' segments in a tracked frame.
-            segs: std::cell::RefCell::new(if self.motion.is_some() {
-                Vec::with_capacity(256)
-            } else {
-                Vec::new()
-            }),
-            scratch: std::cell::Cell::new(Vec::new()),
+            // Room for a packet's segments in a tracked frame.
+            segs: std::cell::RefCell::new(std::array::from_fn(|_| {
+                Vec::with_capacity(if self.motion.is_some() { 16 } else { 0 })
+            })),
             colors: std::cell::Cell::new([[0.0; LANES]; 3]),
         })
     }

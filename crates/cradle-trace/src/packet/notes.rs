@@ -76,7 +76,7 @@ impl Packet<'_, '_> {
                     let m = &marks[i];
                     m.set(m.get() | g.cells(seg.a.min(seg.b), seg.a.max(seg.b)));
                 }
-                segs.push((i as u8, seg));
+                segs[i].push(seg);
             }
         }
     }
