@@ -317,9 +317,10 @@ fn a_moving_view_traces_one_sample_per_pixel_until_it_rests() {
     assert_eq!(s.world.scene().samples, 1, "not rested yet");
     s.step(rest);
     assert_eq!(s.world.scene().samples, aa, "rested: anti-aliased again");
+    let threshold = s.config().render.adaptive_threshold as f32;
     assert_eq!(
         s.world.scene().adaptive,
-        Some(0.1),
+        Some(threshold),
         "at the config's threshold"
     );
     assert_eq!(s.settle(), None);

@@ -22,7 +22,7 @@ pub struct RenderConfig {
     /// pixel differs from a neighbour by more than `adaptive_threshold`. Default true.
     pub adaptive: bool,
     /// Largest sRGB difference (0..=1, of any channel) between a pixel and its
-    /// 4-neighbours that adaptive anti-aliasing leaves alone. Default 0.1.
+    /// 4-neighbours that adaptive anti-aliasing leaves alone. Default 0.15.
     pub adaptive_threshold: f64,
     /// Tracing threads, 0..=256; 0 uses every core. Default 0.
     pub threads: usize,
@@ -38,7 +38,7 @@ impl Default for RenderConfig {
             max_depth: 3,
             samples: 4,
             adaptive: true,
-            adaptive_threshold: 0.1,
+            adaptive_threshold: 0.15,
             threads: 0,
             background: [0.05, 0.06, 0.08],
         }
