@@ -19,11 +19,11 @@ pub const TILE: u32 = 16;
 #[derive(Debug, Clone)]
 pub struct Tiles {
     across: u32,
-    lists: Vec<Vec<usize>>,
+    lists: Lists,
     /// Per object, its pixel rectangle with margin, for finer lists per packet.
     rects: Vec<[f32; 4]>,
     /// Per plane (object index), lists for its mirror rays.
-    mirrors: Vec<(usize, Vec<Vec<usize>>)>,
+    mirrors: Vec<(usize, Lists)>,
     /// Per plane, per tile, a bit per light whose shadow rays from the plane's
     /// points in the tile only a plane can block: found the first time a tile
     /// is asked, as most frames of a moving scene ask few.
@@ -236,7 +236,7 @@ impl Tiles {
     /// The candidates of pixel `(x, y)`.
     #[must_use]
     pub fn at(&self, x: u32, y: u32) -> &[usize] {
-        &self.lists[self.tile(x, y)]
+        self.lists.of(self.tile(x, y))
     }
 
     /// The candidates of the rays that plane `plane` reflects at pixel `(x, y)`
@@ -247,7 +247,7 @@ impl Tiles {
         self.mirrors
             .iter()
             .find(|(i, _)| *i == plane)
-            .map(|(_, lists)| lists[tile].as_slice())
+            .map(|(_, lists)| lists.of(tile))
     }
 
     fn tile(&self, x: u32, y: u32) -> usize {
@@ -296,6 +296,21 @@ fn clear_lights(
         .fold(0, |bits, light| bits | 1 << light)
 }
 
+/// Each tile's list of objects, in one vector: tile `t`'s are
+/// `ids[start[t]..start[t + 1]]` (two allocations for all, not one a tile).
+#[derive(Debug, Clone)]
+struct Lists {
+    start: Vec<u32>,
+    ids: Vec<usize>,
+}
+
+impl Lists {
+    /// Tile `t`'s objects.
+    fn of(&self, t: usize) -> &[usize] {
+        &self.ids[self.start[t] as usize..self.start[t + 1] as usize]
+    }
+}
+
 /// Per tile, the objects (index, bounds in query order; `None` for planes) whose
 /// screen bounds cover it.
 fn lists(
@@ -303,7 +318,7 @@ fn lists(
     cam: &CameraRays,
     width: u32,
     height: u32,
-) -> Vec<Vec<usize>> {
+) -> Lists {
     lists_and_rects(objects, cam, width, height).0
 }
 
@@ -314,10 +329,12 @@ fn lists_and_rects(
     cam: &CameraRays,
     width: u32,
     height: u32,
-) -> (Vec<Vec<usize>>, Vec<[f32; 4]>) {
+) -> (Lists, Vec<[f32; 4]>) {
     let across = width.div_ceil(TILE);
     let down = height.div_ceil(TILE);
-    let mut lists = vec![Vec::new(); (across * down) as usize];
+    let tiles = (across * down) as usize;
+    // Each object's tiles, columns and rows (inclusive), in query order.
+    let mut spans = Vec::new();
     let mut rects = Vec::new();
     for (i, bounds) in objects {
         // Planes (no bounds) and boxes reaching behind the eye go everywhere.
@@ -341,11 +358,28 @@ fn lists_and_rects(
         }
         let tx = |x: f32| ((x.max(0.0) / TILE as f32) as u32).min(across - 1);
         let ty = |y: f32| ((y.max(0.0) / TILE as f32) as u32).min(down - 1);
-        for row in ty(y0)..=ty(y1) {
-            for col in tx(x0)..=tx(x1) {
-                lists[(row * across + col) as usize].push(i);
+        spans.push((i, [tx(x0), tx(x1)], [ty(y0), ty(y1)]));
+    }
+    // Count each tile's objects, then place them: the lists in query order.
+    let mut start = vec![0u32; tiles + 1];
+    let each = |f: &mut dyn FnMut(usize, usize)| {
+        for &(i, [c0, c1], [r0, r1]) in &spans {
+            for row in r0..=r1 {
+                for col in c0..=c1 {
+                    f((row * across + col) as usize, i);
+                }
             }
         }
+    };
+    each(&mut |t, _| start[t + 1] += 1);
+    for t in 0..tiles {
+        start[t + 1] += start[t];
     }
-    (lists, rects)
+    let mut ids = vec![0; start[tiles] as usize];
+    let mut next = start.clone();
+    each(&mut |t, i| {
+        ids[next[t] as usize] = i;
+        next[t] += 1;
+    });
+    (Lists { start, ids }, rects)
 }
