@@ -300,8 +300,11 @@ impl Frame<'_> {
         mut notes: Option<&mut Notes<'_>>,
     ) {
         let track = rm.tracked();
-        let at: Vec<(f32, f32)> = ks.iter().map(|&k| (k as f32 + dx, y as f32 + dy)).collect();
-        let colors = pk.camera_samples(&at);
+        let mut at = [(0.0, 0.0); LANES];
+        for (a, &k) in at.iter_mut().zip(ks) {
+            *a = (k as f32 + dx, y as f32 + dy);
+        }
+        let colors = pk.camera_samples(&at[..ks.len()]);
         let marks = pk.marks();
         for (i, &k) in ks.iter().enumerate() {
             // `pixel`: the sum from zero over the one sample, divided by 1.
