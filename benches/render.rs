@@ -43,6 +43,7 @@ fn hud(c: &mut Criterion) {
                 rgba: &mut rgba,
                 width: 1200,
                 height: 600,
+                bgra: false,
             };
             canvas.panel(0, std::hint::black_box(&lines))
         });

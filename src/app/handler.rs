@@ -114,7 +114,7 @@ impl ApplicationHandler<UserEvent> for App {
                     Effect::Redraw => {}
                     Effect::Screenshot => {
                         let r = &self.session.config().render;
-                        screenshot::save(r.width, r.height, surface.frame());
+                        screenshot::save(r.width, r.height, &surface.frame());
                     }
                     Effect::Quit => event_loop.exit(),
                 }

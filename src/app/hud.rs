@@ -8,7 +8,7 @@ const SCALE: usize = 2;
 /// Height of one text line in pixels.
 pub const LINE: usize = 10 * SCALE;
 
-/// An RGBA8 frame to draw into.
+/// An RGBA8 (or BGRA8) frame to draw into.
 pub struct Canvas<'a> {
     /// Pixels, rows top to bottom.
     pub rgba: &'a mut [u8],
@@ -16,6 +16,8 @@ pub struct Canvas<'a> {
     pub width: usize,
     /// Height in pixels.
     pub height: usize,
+    /// The bytes are in BGRA order (colours are given as RGB all the same).
+    pub bgra: bool,
 }
 
 impl Canvas<'_> {
@@ -34,6 +36,11 @@ impl Canvas<'_> {
     /// Draws `text` with its top-left corner at `(x, y)` in `color`; characters
     /// without a glyph are skipped, and whatever leaves the frame is clipped.
     pub fn text(&mut self, x: usize, y: usize, text: &str, color: [u8; 3]) {
+        let color = if self.bgra {
+            [color[2], color[1], color[0]]
+        } else {
+            color
+        };
         for (n, ch) in text.chars().enumerate() {
             let Some(glyph) = BASIC_FONTS.get(ch) else {
                 continue;
@@ -107,7 +114,29 @@ pub fn wrap(lines: &[(String, [u8; 3])], chars: usize) -> Vec<(String, [u8; 3])>
 
 #[cfg(test)]
 mod tests {
-    use super::wrap;
+    use super::{Canvas, wrap};
+
+    #[test]
+    fn text_takes_its_colour_in_the_frames_byte_order() {
+        // The glyph's pixels all get the colour, in the frame's order.
+        for (bgra, want) in [(false, [200, 100, 50]), (true, [50, 100, 200])] {
+            let mut rgba = vec![0u8; 32 * 32 * 4];
+            let mut canvas = Canvas {
+                rgba: &mut rgba,
+                width: 32,
+                height: 32,
+                bgra,
+            };
+            canvas.text(0, 0, "#", [200, 100, 50]);
+            let lit: Vec<&[u8]> = rgba.chunks_exact(4).filter(|p| p[..3] != [0; 3]).collect();
+            assert!(!lit.is_empty(), "the glyph shows");
+            assert!(
+                lit.iter().all(|p| p[..3] == want),
+                "bgra {bgra}: {:?}",
+                lit[0]
+            );
+        }
+    }
 
     #[test]
     fn long_lines_wrap_at_spaces_and_keep_every_character() {

@@ -12,8 +12,9 @@
 //! last), and the window's size is checked again right before each render.
 //!
 //! The traced bytes are sRGB already: where the surface offers a plain format,
-//! pixels is built again with a plain texture and surface ([`plain_format`]),
-//! so that drawing them is a copy.
+//! pixels is built again with a plain texture and surface, and where the window
+//! shows the picture pixel for pixel presenting copies the texture onto the
+//! surface instead of drawing it (`formats`).
 
 use super::WindowError;
 use super::hud::Canvas;
@@ -21,7 +22,8 @@ use super::panel::Panel;
 use super::session::{HudLine, Session};
 use crate::trace::Image;
 use pixels::wgpu::TextureFormat;
-use pixels::{Pixels, PixelsBuilder, ScalingMode, SurfaceTexture};
+use pixels::{Pixels, PixelsBuilder, SurfaceTexture};
+use std::borrow::Cow;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 use winit::dpi::PhysicalSize;
@@ -31,38 +33,8 @@ use winit::window::Window;
 /// Quiet time after the last resize event before presenting again.
 const RESIZE_SETTLE: Duration = Duration::from_millis(150);
 
-/// How the framebuffer of size `buffer` is drawn on a window of size `window`:
-/// pixel by pixel (each pixel a k x k square) where the window is an exact
-/// multiple k of it, the cheap draw that leaves the bytes as they are; scaled to
-/// fit, keeping the aspect, otherwise (pixel-perfect drawing would crop a
-/// smaller window and border a larger one).
-fn scaling((bw, bh): (u32, u32), (ww, wh): (u32, u32)) -> ScalingMode {
-    let exact = bw > 0 && bh > 0 && ww % bw == 0 && wh % bh == 0 && ww / bw == wh / bh;
-    if exact && ww >= bw {
-        ScalingMode::PixelPerfect
-    } else {
-        ScalingMode::Fill
-    }
-}
-
-/// The surface format without sRGB encoding that matches pixels' own (sRGB)
-/// choice, where the surface offers it. pixels' texture and surface are both
-/// sRGB by default, so its scaling pass decodes every texel to linear and
-/// encodes it back, for the same bytes. With both plain (an `Rgba8Unorm`
-/// texture and this surface) the same bytes reach the screen through a plain
-/// copy: under Mesa's lavapipe 8.5 -> 6 ms of CPU a frame (docs/performance.md).
-fn plain_format(pixels: &Pixels<'_>) -> Option<TextureFormat> {
-    plain_of(
-        pixels.surface_texture_format(),
-        &pixels.context().surface_capabilities.formats,
-    )
-}
-
-/// [`plain_format`] given the surface format chosen and those `offered`.
-fn plain_of(chosen: TextureFormat, offered: &[TextureFormat]) -> Option<TextureFormat> {
-    let plain = chosen.remove_srgb_suffix();
-    (plain != chosen && offered.contains(&plain)).then_some(plain)
-}
+mod formats;
+use formats::{copies, plain_of, put_bgra, scaling, texture_for};
 
 /// The window and its framebuffer.
 pub struct Surface {
@@ -76,6 +48,8 @@ pub struct Surface {
     occluded: bool,
     /// When the last resize event came, while presenting waits for them to stop.
     resizing: Option<Instant>,
+    /// The framebuffer holds BGRA bytes (for a `Bgra8Unorm` texture).
+    bgra: bool,
 }
 
 impl Surface {
@@ -98,11 +72,12 @@ impl Surface {
         let texture = || SurfaceTexture::new(sw, sh, Arc::clone(&window));
         let no_adapter = |e: pixels::Error| WindowError::NoAdapter(e.to_string());
         let mut pixels = Pixels::new(width, height, texture()).map_err(no_adapter)?;
-        if let Some(plain) = plain_format(&pixels) {
+        let offered = &pixels.context().surface_capabilities.formats;
+        if let Some(plain) = plain_of(pixels.surface_texture_format(), offered) {
             // One surface per window: the first goes before the second is made.
             drop(pixels);
             pixels = PixelsBuilder::new(width, height, texture())
-                .texture_format(TextureFormat::Rgba8Unorm)
+                .texture_format(texture_for(plain))
                 .surface_texture_format(plain)
                 .build()
                 .or_else(|e| {
@@ -112,9 +87,11 @@ impl Surface {
                 .map_err(no_adapter)?;
         }
         pixels.set_scaling_mode(scaling((width, height), (sw, sh)));
+        let bgra = pixels.context().texture_format == TextureFormat::Bgra8Unorm;
         tracing::info!(
-            "window {sw}x{sh}, framebuffer {width}x{height}, format {:?}",
-            pixels.render_texture_format()
+            "window {sw}x{sh}, framebuffer {width}x{height}, format {:?}, texture {:?}",
+            pixels.render_texture_format(),
+            pixels.context().texture_format
         );
         window.request_redraw();
         Ok(Self {
@@ -124,6 +101,7 @@ impl Surface {
             size: (sw, sh),
             occluded: false,
             resizing: None,
+            bgra,
         })
     }
 
@@ -202,10 +180,18 @@ impl Surface {
         }
     }
 
-    /// The framebuffer as last presented (the picture with the HUD).
+    /// The framebuffer as last presented (the picture with the HUD), RGBA.
     #[must_use]
-    pub fn frame(&self) -> &[u8] {
-        self.pixels.frame()
+    pub fn frame(&self) -> Cow<'_, [u8]> {
+        let frame = self.pixels.frame();
+        if self.bgra {
+            // Swapping red and blue again gives the RGBA bytes back.
+            let mut rgba = vec![0; frame.len()];
+            put_bgra(&mut rgba, frame);
+            Cow::Owned(rgba)
+        } else {
+            Cow::Borrowed(frame)
+        }
     }
 
     /// While resizes keep coming: the time to wake and present again. Once they
@@ -238,13 +224,18 @@ impl Surface {
         if let Some(img) = image {
             let frame = self.pixels.frame_mut();
             if frame.len() == img.rgba.len() {
-                frame.copy_from_slice(&img.rgba);
+                if self.bgra {
+                    put_bgra(frame, &img.rgba);
+                } else {
+                    frame.copy_from_slice(&img.rgba);
+                }
             }
             if !lines.is_empty() {
                 let mut canvas = Canvas {
                     rgba: frame,
                     width: img.width as usize,
                     height: img.height as usize,
+                    bgra: self.bgra,
                 };
                 canvas.panel(0, lines);
             }
@@ -259,8 +250,21 @@ impl Surface {
     /// Presenting failed for a reason other than a size change.
     pub fn draw(&mut self, panel: bool) -> anyhow::Result<()> {
         let ui = &mut self.panel;
+        let c = self.pixels.context();
+        let (t, size) = (c.texture_extent, self.size);
+        let copy = copies(
+            (c.texture_format, self.pixels.surface_texture_format()),
+            c.surface_capabilities.usages,
+            (t.width, t.height),
+            size,
+        );
         let drawn = self.pixels.render_with(|encoder, target, context| {
-            context.scaling_renderer.render(encoder, target);
+            if copy && (target.texture().width(), target.texture().height()) == size {
+                let texture = context.texture.as_image_copy();
+                encoder.copy_texture_to_texture(texture, target.texture().as_image_copy(), t);
+            } else {
+                context.scaling_renderer.render(encoder, target);
+            }
             if let (true, Some(ui)) = (panel, ui.as_mut()) {
                 ui.render(encoder, target, context);
             }
@@ -277,37 +281,5 @@ impl Surface {
             }
             Err(e) => Err(anyhow::anyhow!("presenting the frame failed: {e}")),
         }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::{plain_of, scaling};
-    use pixels::ScalingMode;
-    use pixels::wgpu::TextureFormat as F;
-
-    #[test]
-    fn the_plain_twin_of_an_srgb_surface_only_where_offered() {
-        let offered = [F::Bgra8UnormSrgb, F::Bgra8Unorm, F::Rgba16Float];
-        assert_eq!(plain_of(F::Bgra8UnormSrgb, &offered), Some(F::Bgra8Unorm));
-        // Not offered, or the surface already plain (or not 8-bit): as it is.
-        assert_eq!(plain_of(F::Rgba8UnormSrgb, &offered), None);
-        assert_eq!(plain_of(F::Bgra8UnormSrgb, &[F::Bgra8UnormSrgb]), None);
-        assert_eq!(plain_of(F::Bgra8Unorm, &offered), None);
-        assert_eq!(plain_of(F::Rgba16Float, &offered), None);
-    }
-
-    #[test]
-    fn pixel_by_pixel_only_at_exact_multiples() {
-        let pp = |b, w| matches!(scaling(b, w), ScalingMode::PixelPerfect);
-        assert!(pp((1200, 600), (1200, 600)));
-        assert!(pp((1200, 600), (2400, 1200)));
-        assert!(pp((7, 3), (21, 9)));
-        // Not a multiple, different factors, smaller, or empty: scaled.
-        assert!(!pp((1200, 600), (1201, 600)));
-        assert!(!pp((1200, 600), (2400, 600)));
-        assert!(!pp((1200, 600), (600, 300)));
-        assert!(!pp((1200, 600), (0, 0)));
-        assert!(!pp((0, 0), (1200, 600)));
     }
 }

@@ -501,7 +501,11 @@ pub(crate) fn create_backing_texture(
         sample_count: 1,
         dimension: wgpu::TextureDimension::D2,
         format: backing_texture_format,
-        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        // Patched for newtons-cradle: also a copy's source, to copy onto the
+        // surface (see `Pixels::reconfigure_surface`).
+        usage: wgpu::TextureUsages::TEXTURE_BINDING
+            | wgpu::TextureUsages::COPY_DST
+            | wgpu::TextureUsages::COPY_SRC,
         view_formats: &[],
     });
     let texture_view = texture.create_view(&wgpu::TextureViewDescriptor::default());

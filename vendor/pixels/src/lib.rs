@@ -639,7 +639,11 @@ impl<'win> Pixels<'win> {
         self.context.surface.configure(
             &self.context.device,
             &wgpu::SurfaceConfiguration {
-                usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+                // Patched for newtons-cradle: also a copy's destination where the
+                // surface allows it, so a render function can copy the texture
+                // onto the surface instead of drawing it (see `Pixels::texture`).
+                usage: wgpu::TextureUsages::RENDER_ATTACHMENT
+                    | (self.context.surface_capabilities.usages & wgpu::TextureUsages::COPY_DST),
                 format: self.surface_texture_format,
                 width: self.surface_size.width,
                 height: self.surface_size.height,
