@@ -19,12 +19,16 @@ use glam::Vec3;
 mod ball;
 use ball::ball_box;
 
-/// Pixels added on each side of a region's screen box: 1 because a pixel's
-/// samples lie anywhere in it, 1 more for every rounding on the way (the f32
-/// projection, the tracer's hit points, the shadow and mirror rays starting
-/// `SURFACE_OFFSET` = 2e-5 m off the plane: each well under 0.1 pixel at the
-/// scene's scale, where a pixel spans about a millimetre).
-const PAD_PX: f32 = 2.0;
+/// Pixels added on each side of a region's screen box. Pixel `k` holds samples
+/// at `k + [0, 1)`, so the pixels whose samples can fall within `x0..=x1` are
+/// `floor(x0)..=floor(x1)`: what flooring `x0` and ceiling `x1` give with any
+/// pad above nought (the same for rows, and for a quad's band of rows). The pad
+/// covers the rounding of the f32 projection (about 1e-3 pixel at a thousand
+/// pixels); what the tracer's rounding moves in the scene (its hit points, the
+/// shadow and mirror rays starting `SURFACE_OFFSET` = 2e-5 m off the plane) is
+/// held by the pieces' growth of twice `Near::PAD` (2e-4 m). At 2.0 the runs of
+/// the default swing held 16% more pixels.
+const PAD_PX: f32 = 0.5;
 
 /// Per row, the runs of pixels `x0..x1` (ascending, apart) where a moved shape
 /// may show on the screen, in the plane's mirror or as a shadow on a plane.

@@ -128,12 +128,17 @@ fn spans_hold_every_pixel_whose_camera_ray_meets_the_ball() {
         let within = |x: u32| runs.iter().any(|&(a, b)| a <= x && x < b);
         for x in 0..sc.size.0 {
             inside += usize::from(within(x));
-            // Ray and ball, by the quadratic's discriminant.
-            let ray = cam.ray(x as f32 + 0.5, y as f32 + 0.5);
-            let oc = ray.origin - c;
-            let b = oc.dot(ray.dir);
-            if b * b - (oc.length_squared() - r * r) >= 0.0 {
-                met += 1;
+            // Ray and ball, by the quadratic's discriminant, at the pixel's
+            // centre and its corners (samples lie anywhere in it).
+            let sees = |(dx, dy): (f32, f32)| {
+                let ray = cam.ray(x as f32 + dx, y as f32 + dy);
+                let oc = ray.origin - c;
+                let b = oc.dot(ray.dir);
+                b * b - (oc.length_squared() - r * r) >= 0.0
+            };
+            let corners = [(0.0, 0.0), (0.999, 0.0), (0.0, 0.999), (0.999, 0.999)];
+            met += usize::from(sees((0.5, 0.5)));
+            if sees((0.5, 0.5)) || corners.into_iter().any(sees) {
                 assert!(within(x), "pixel ({x}, {y}) sees the ball");
             }
         }
