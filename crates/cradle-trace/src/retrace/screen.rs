@@ -6,8 +6,8 @@
 //! camera ray met a plane only where the shape's shadow on the plane shows.
 //! Each of those regions is bounded by the images of the corners of a box
 //! around the shape (mirrored or cast onto the plane, then seen): for a ball
-//! their screen box, met with the ball's exact one; for a string a rectangle
-//! along the image of its axis. Padded, per row, [`Spans`] holds their union
+//! their screen box, met with the ball's exact one and, row by row, with its
+//! ellipse (`conic`); for a string a rectangle along the image of its axis. Padded, per row, [`Spans`] holds their union
 //! as runs of pixels. `Moved::dirty` takes a pixel in a run as a candidate
 //! whatever its cells.
 
@@ -17,7 +17,9 @@ use crate::scene::{Light, Scene, Shape};
 use glam::Vec3;
 
 mod ball;
+mod conic;
 use ball::ball_box;
+use conic::Conic;
 
 /// Pixels added on each side of a region's screen box. Pixel `k` holds samples
 /// at `k + [0, 1)`, so the pixels whose samples can fall within `x0..=x1` are
@@ -54,6 +56,19 @@ impl Spans {
                 let (y0, y1) = (px((y0 - PAD_PX).floor(), h), px((y1 + PAD_PX).ceil(), h));
                 if x0 < x1 {
                     cover.extend((y0..y1).map(|y| (y, x0, x1)));
+                }
+            }
+            Region::Ellipse(conic, [[x0, x1], [y0, y1]]) => {
+                // Per row, the ellipse's span in the row's band, within the box.
+                for y in px((y0 - PAD_PX).floor(), h)..px((y1 + PAD_PX).ceil(), h) {
+                    let band = (y as f32 - PAD_PX, y as f32 + 1.0 + PAD_PX);
+                    if let Some((l, r)) = conic.band_x(band) {
+                        let (l, r) = (l.max(x0) - PAD_PX, r.min(x1) + PAD_PX);
+                        let (l, r) = (px(l.floor(), w), px(r.ceil(), w));
+                        if l < r {
+                            cover.push((y, l, r));
+                        }
+                    }
                 }
             }
             Region::Quad(q) => {
@@ -121,10 +136,13 @@ pub(crate) enum Piece {
 }
 
 /// Where a piece may show on the screen, in pixels: a box `[[x0, x1], [y0,
-/// y1]]` (padded when added), or a convex quad, padded.
+/// y1]]` (padded when added), a ball's ellipse within such a box, or a convex
+/// quad, padded.
 #[derive(Debug, Clone, Copy)]
 enum Region {
     Box([[f32; 2]; 2]),
+    /// A ball's ellipse, within its box.
+    Ellipse(Conic, [[f32; 2]; 2]),
     Quad([(f32, f32); 4]),
 }
 
@@ -145,7 +163,11 @@ impl Piece {
                     return Some(Region::Box([bx, by]));
                 };
                 let meet = |a: [f32; 2], e: [f32; 2]| [a[0].max(e[0]), a[1].min(e[1])];
-                Some(Region::Box([meet(bx, ex), meet(by, ey)]))
+                let boxed = [meet(bx, ex), meet(by, ey)];
+                Some(match Conic::of_ball(cam, (c, r), m) {
+                    Some(conic) => Region::Ellipse(conic, boxed),
+                    None => Region::Box(boxed),
+                })
             }
         }
     }

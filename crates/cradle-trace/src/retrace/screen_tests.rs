@@ -1,7 +1,8 @@
 //! The screen half of the motion filter: a ball's screen box under each map
-//! holds its image and no more; a row's runs hold the pixels that see it.
+//! holds its image and no more, and so do its ellipse's rows; a row's runs
+//! hold the pixels that see it.
 
-use super::{Map, Piece, Spans, ball_box, maps};
+use super::{Conic, Map, Piece, Spans, ball_box, maps};
 use crate::camera::CameraRays;
 use crate::scene::{Camera, Light, Material, Object, Scene, Shape};
 use glam::Vec3;
@@ -111,6 +112,62 @@ fn a_balls_screen_box_holds_its_image_and_no_more_under_every_map() {
     };
     let ball = Piece::Ball(c, r);
     assert!(ball.region(&cam, &low).is_none());
+}
+
+#[test]
+fn a_balls_ellipse_holds_its_image_row_by_row_and_cuts_the_boxs_corners() {
+    let sc = scene();
+    let cam = CameraRays::new(&sc.camera, sc.size.0, sc.size.1);
+    let (c, r) = (Vec3::new(-0.05, 0.09, 0.01), 0.02);
+    // The images of a surface point under each map, as in the test above.
+    let light = Vec3::new(0.7, 0.6, 0.5);
+    let along = Vec3::new(0.3, -1.0, -0.2).normalize();
+    let images: [Image; 4] = [
+        |p, _, _| p,
+        |p, _, _| Vec3::new(p.x, -p.y, p.z),
+        |p, l, _| l + (p - l) * (l.y / (l.y - p.y)),
+        |p, _, d| p - d * (p.y / d.y),
+    ];
+    for (i, (image, m)) in images.iter().zip(&maps(&sc)).enumerate() {
+        let conic = Conic::of_ball(&cam, (c, r), m).expect("an ellipse");
+        let [bx, by] = ball_box(&cam, (c, r), m).expect("a bounded image");
+        // Per row of the box, the points' span and the ellipse's.
+        let rows = by[0].floor() as i32..by[1].ceil() as i32;
+        let mut seen = vec![(f32::MAX, f32::MIN); rows.len()];
+        for p in surface(c, r, 20_000) {
+            let (x, y) = cam.project(image(p, light, along)).expect("in front");
+            let k = (y.floor() as i32 - rows.start) as usize;
+            seen[k] = (seen[k].0.min(x), seen[k].1.max(x));
+        }
+        let (mut area, mut boxed) = (0.0, 0.0);
+        for (k, &(lo, hi)) in seen.iter().enumerate() {
+            let y = (rows.start + k as i32) as f32;
+            let got = conic.band_x((y, y + 1.0));
+            boxed += bx[1] - bx[0];
+            let Some((l, r)) = got else {
+                assert!(
+                    lo > hi,
+                    "map {i}, row {y}: points at {lo}..{hi}, no ellipse"
+                );
+                continue;
+            };
+            area += r - l;
+            // Holds every point (to f32 rounding), and no more than a pixel
+            // beyond them where the row holds many.
+            assert!(
+                l - 1e-3 <= lo && hi <= r + 1e-3,
+                "map {i}, row {y}: {lo}..{hi} out of {l}..{r}"
+            );
+            if hi - lo > 10.0 {
+                assert!(
+                    lo - l < 1.0 && r - hi < 1.0,
+                    "map {i}, row {y}: {l}..{r} for {lo}..{hi}"
+                );
+            }
+        }
+        // An ellipse fills at most pi / 4 of its box (plus the rows' steps).
+        assert!(area < 0.85 * boxed, "map {i}: {area} of the box's {boxed}");
+    }
 }
 
 #[test]
