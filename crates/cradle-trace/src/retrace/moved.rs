@@ -3,7 +3,7 @@
 //! runs first, `screen`, then the segments of the pixels they leave, eight at a
 //! time, against the moved shapes).
 
-use super::{BLOCK, RowMotion, Spans};
+use super::{BLOCK, RowMotion, SUPER, Spans};
 use crate::bits::BitRoom;
 use crate::motion::{Batch, Cells, NearSet};
 #[cfg(target_arch = "x86_64")]
@@ -72,50 +72,28 @@ impl Moved {
     #[inline(always)]
     fn dirty_with<S: Simd>(&self, s: S, y: usize, rm: &RowMotion) -> Option<Vec<u32>> {
         let n = rm.cells.len();
-        let cells_only = !rm.tracked() || self.coarse;
         let mut room = BitRoom::new();
         let mut hit = room.row(n);
         let mut batch = Batch::default();
         let runs = self.spans.row(y);
         // The first run that ends after the pixel at hand (pixels ascend).
         let mut r = 0;
-        for (b, &c) in rm.blocks.iter().enumerate() {
-            let (x0, x1) = (b * BLOCK, ((b + 1) * BLOCK).min(n));
-            while r < runs.len() && runs[r].1 as usize <= x0 {
-                r += 1;
-            }
-            if c & self.cells == 0 && runs.get(r).is_none_or(|run| run.0 as usize >= x1) {
+        for (i, &c) in rm.supers.iter().enumerate() {
+            let (b0, b1) = (i * SUPER, ((i + 1) * SUPER).min(rm.blocks.len()));
+            if !may_hold(
+                runs,
+                &mut r,
+                c & self.cells,
+                (b0 * BLOCK, (b1 * BLOCK).min(n)),
+            ) {
                 continue;
             }
-            // Plain loops: a closure would stay a call, outside the AVX2 build.
-            for k in x0..x1 {
-                while r < runs.len() && runs[r].1 as usize <= k {
-                    r += 1;
-                }
-                // In a run, any moved shape may meet a free segment.
-                let in_run = runs.get(r).is_some_and(|run| run.0 as usize <= k);
-                let cells = if in_run {
-                    Cells::MAX
-                } else {
-                    rm.cells[k] & self.cells
-                };
-                if cells == 0 {
+            for b in b0..b1 {
+                let (x0, x1) = (b * BLOCK, ((b + 1) * BLOCK).min(n));
+                if !may_hold(runs, &mut r, rm.blocks[b] & self.cells, (x0, x1)) {
                     continue;
                 }
-                if cells_only {
-                    hit.set(k);
-                    continue;
-                }
-                for seg in rm.of(k) {
-                    if hit.has(k) {
-                        break;
-                    }
-                    let near_box = seg.a.max(seg.b).cmpge(self.lo).all()
-                        && seg.a.min(seg.b).cmple(self.hi).all();
-                    if near_box && batch.push(k as u32, cells, seg) {
-                        batch.test(s, &self.near, &mut hit);
-                    }
-                }
+                self.block(s, (rm, x0..x1), (runs, &mut r), (&mut batch, &mut hit));
             }
         }
         batch.test(s, &self.near, &mut hit);
@@ -123,4 +101,67 @@ impl Moved {
         out.extend(hit.iter().map(|k| k as u32));
         (!out.is_empty()).then_some(out)
     }
+
+    /// The candidates among pixels `xs` of `rm` (a block), their segments
+    /// tested in `batch`, the pixels met noted in `hit`; `r`: the first of
+    /// `runs` that ends after `xs.start`, kept so for the next block.
+    #[expect(
+        clippy::inline_always,
+        reason = "inlined into each build, so the AVX2 one compiles it for AVX2"
+    )]
+    #[inline(always)]
+    fn block<S: Simd>(
+        &self,
+        s: S,
+        (rm, xs): (&RowMotion, std::ops::Range<usize>),
+        (runs, r): (&[(u32, u32)], &mut usize),
+        (batch, hit): (&mut Batch, &mut crate::bits::RowBits<'_>),
+    ) {
+        let cells_only = !rm.tracked() || self.coarse;
+        for k in xs {
+            while *r < runs.len() && runs[*r].1 as usize <= k {
+                *r += 1;
+            }
+            // In a run, any moved shape may meet a free segment.
+            let in_run = runs.get(*r).is_some_and(|run| run.0 as usize <= k);
+            let cells = if in_run {
+                Cells::MAX
+            } else {
+                rm.cells[k] & self.cells
+            };
+            if cells == 0 {
+                continue;
+            }
+            if cells_only {
+                hit.set(k);
+                continue;
+            }
+            for seg in rm.of(k) {
+                if hit.has(k) {
+                    break;
+                }
+                let near_box =
+                    seg.a.max(seg.b).cmpge(self.lo).all() && seg.a.min(seg.b).cmple(self.hi).all();
+                if near_box && batch.push(k as u32, cells, seg) {
+                    batch.test(s, &self.near, hit);
+                }
+            }
+        }
+    }
+}
+
+/// Whether pixels `x0..x1`, whose cells meeting the moved ones are `met`, may
+/// hold a candidate: `met` is not empty or a run meets them (`r`: the first of
+/// `runs` that ends after the last pixels asked about, ascending; moved on to
+/// the first that ends after `x0`).
+#[inline(always)]
+#[expect(
+    clippy::inline_always,
+    reason = "a few compares, inlined into each build"
+)]
+fn may_hold(runs: &[(u32, u32)], r: &mut usize, met: Cells, (x0, x1): (usize, usize)) -> bool {
+    while *r < runs.len() && runs[*r].1 as usize <= x0 {
+        *r += 1;
+    }
+    met != 0 || runs.get(*r).is_some_and(|run| (run.0 as usize) < x1)
 }
