@@ -220,8 +220,9 @@ impl Notes<'_> {
 /// A run of eight pixels holding at least this many to re-trace goes as a packet
 /// (which traces all eight); fewer go one by one. Chosen by callgrind on the
 /// default swing: 1 (always a packet) 167M instructions an incremental frame at
-/// one sample, 3 155M, 5 151M, 6 150M, never 159M.
-const PACKET_AT_LEAST: usize = 5;
+/// one sample, 3 155M, 5 151M, 6 150M, never 159M; later, with the default
+/// anti-aliasing, 4 1M more than 5 and 6 0.5M fewer (100.4M -> 99.9M).
+const PACKET_AT_LEAST: usize = 6;
 
 impl Frame<'_> {
     /// Re-traces the pixels of row `y` that `moved` may have changed, at samples
