@@ -26,11 +26,11 @@ fn scene() -> Scene {
         }],
         lights: vec![
             Light::Point {
-                position: Vec3::new(0.7, 0.6, 0.5),
+                position: lights().0,
                 color: Vec3::ONE,
             },
             Light::Directional {
-                direction: Vec3::new(0.3, -1.0, -0.2).normalize(),
+                direction: lights().1,
                 color: Vec3::ONE,
             },
         ],
@@ -52,6 +52,23 @@ fn scene() -> Scene {
 /// light's direction.
 type Image = fn(Vec3, Vec3, Vec3) -> Vec3;
 
+/// The scene's point light and the directional light's direction.
+fn lights() -> (Vec3, Vec3) {
+    (
+        Vec3::new(0.7, 0.6, 0.5),
+        Vec3::new(0.3, -1.0, -0.2).normalize(),
+    )
+}
+
+/// Each map's image of a point, worked out here on its own for the floor
+/// y = 0: itself, mirrored, cast from the light, cast along the light.
+const IMAGES: [(&str, Image); 4] = [
+    ("eye", |p, _, _| p),
+    ("mirror", |p, _, _| Vec3::new(p.x, -p.y, p.z)),
+    ("cast", |p, l, _| l + (p - l) * (l.y / (l.y - p.y))),
+    ("along", |p, _, d| p - d * (p.y / d.y)),
+];
+
 /// Points spread over the ball's surface (a Fibonacci sphere).
 fn surface(c: Vec3, r: f32, n: usize) -> impl Iterator<Item = Vec3> {
     (0..n).map(move |i| {
@@ -67,19 +84,10 @@ fn a_balls_screen_box_holds_its_image_and_no_more_under_every_map() {
     let sc = scene();
     let cam = CameraRays::new(&sc.camera, sc.size.0, sc.size.1);
     let (c, r) = (Vec3::new(-0.05, 0.09, 0.01), 0.02);
-    let light = Vec3::new(0.7, 0.6, 0.5);
-    let along = Vec3::new(0.3, -1.0, -0.2).normalize();
-    // Each map's image of a point, worked out here on its own for the floor
-    // y = 0: mirrored, cast from the light, cast along the light.
-    let images: [(&str, Image); 4] = [
-        ("eye", |p, _, _| p),
-        ("mirror", |p, _, _| Vec3::new(p.x, -p.y, p.z)),
-        ("cast", |p, l, _| l + (p - l) * (l.y / (l.y - p.y))),
-        ("along", |p, _, d| p - d * (p.y / d.y)),
-    ];
+    let (light, along) = lights();
     let all = maps(&sc);
     assert_eq!(all.len(), 4, "the eye, the floor's mirror, two casts");
-    for ((name, image), m) in images.iter().zip(&all) {
+    for ((name, image), m) in IMAGES.iter().zip(&all) {
         let [bx, by] = ball_box(&cam, (c, r), m).expect("a bounded image");
         let (mut lo, mut hi) = ((f32::MAX, f32::MAX), (f32::MIN, f32::MIN));
         for p in surface(c, r, 20_000) {
@@ -119,16 +127,8 @@ fn a_balls_ellipse_holds_its_image_row_by_row_and_cuts_the_boxs_corners() {
     let sc = scene();
     let cam = CameraRays::new(&sc.camera, sc.size.0, sc.size.1);
     let (c, r) = (Vec3::new(-0.05, 0.09, 0.01), 0.02);
-    // The images of a surface point under each map, as in the test above.
-    let light = Vec3::new(0.7, 0.6, 0.5);
-    let along = Vec3::new(0.3, -1.0, -0.2).normalize();
-    let images: [Image; 4] = [
-        |p, _, _| p,
-        |p, _, _| Vec3::new(p.x, -p.y, p.z),
-        |p, l, _| l + (p - l) * (l.y / (l.y - p.y)),
-        |p, _, d| p - d * (p.y / d.y),
-    ];
-    for (i, (image, m)) in images.iter().zip(&maps(&sc)).enumerate() {
+    let (light, along) = lights();
+    for (i, ((_, image), m)) in IMAGES.iter().zip(&maps(&sc)).enumerate() {
         let conic = Conic::of_ball(&cam, (c, r), m).expect("an ellipse");
         let [bx, by] = ball_box(&cam, (c, r), m).expect("a bounded image");
         // Per row of the box, the points' span and the ellipse's.
