@@ -72,53 +72,37 @@ impl RowMotion {
         self.garbage = 0;
     }
 
-    /// Notes the union of the cells of each block and of the row: call it once
-    /// the cells are written (before the row is next tested against motion).
+    /// Notes the union of the cells of each block, of each super-block and of
+    /// the row: call it once the cells are written (before the row is next
+    /// tested against motion).
     pub(crate) fn seal(&mut self) {
         self.blocks.clear();
-        self.blocks.extend(
-            self.cells
-                .chunks(BLOCK)
-                .map(|b| b.iter().fold(0, |a, c| a | c)),
-        );
+        self.blocks.extend(self.cells.chunks(BLOCK).map(union));
         self.supers.clear();
-        self.supers.extend(
-            self.blocks
-                .chunks(SUPER)
-                .map(|b| b.iter().fold(0, |a, c| a | c)),
-        );
-        self.any = self.supers.iter().fold(0, |a, c| a | c);
+        self.supers.extend(self.blocks.chunks(SUPER).map(union));
+        self.any = union(&self.supers);
     }
 
     /// [`Self::seal`] after the cells of pixels `xs` (in order) changed, and
     /// only theirs.
     pub(crate) fn reseal(&mut self, xs: impl IntoIterator<Item = usize>) {
-        let (mut last, mut last_super) = (usize::MAX, usize::MAX);
-        let mut supers = std::mem::take(&mut self.supers);
+        let (mut last, mut pending) = (usize::MAX, None);
         for b in xs.into_iter().map(|x| x / BLOCK) {
-            if b != last {
-                let end = ((b + 1) * BLOCK).min(self.cells.len());
-                self.blocks[b] = self.cells[b * BLOCK..end].iter().fold(0, |a, c| a | c);
-                last = b;
-                // Its super-block once its last block in `xs` is done.
-                let s = b / SUPER;
-                if s != last_super && last_super != usize::MAX {
-                    supers[last_super] = self.super_of(last_super);
-                }
-                last_super = s;
+            if b == last {
+                continue;
             }
+            last = b;
+            self.blocks[b] = union(chunk(&self.cells, b, BLOCK));
+            // A super-block once its blocks in `xs` are done (they ascend).
+            if let Some(s) = pending.filter(|&s| s != b / SUPER) {
+                self.supers[s] = union(chunk(&self.blocks, s, SUPER));
+            }
+            pending = Some(b / SUPER);
         }
-        if last_super != usize::MAX {
-            supers[last_super] = self.super_of(last_super);
+        if let Some(s) = pending {
+            self.supers[s] = union(chunk(&self.blocks, s, SUPER));
         }
-        self.supers = supers;
-        self.any = self.supers.iter().fold(0, |a, c| a | c);
-    }
-
-    /// The union of the blocks of super-block `s`.
-    fn super_of(&self, s: usize) -> Cells {
-        let end = ((s + 1) * SUPER).min(self.blocks.len());
-        self.blocks[s * SUPER..end].iter().fold(0, |a, c| a | c)
+        self.any = union(&self.supers);
     }
 
     /// Whether some pixel's cells meet `cells` (after [`Self::seal`]).
@@ -189,6 +173,16 @@ impl RowMotion {
         self.segs = segs;
         self.garbage = 0;
     }
+}
+
+/// The union of `cells`.
+fn union(cells: &[Cells]) -> Cells {
+    cells.iter().fold(0, |a, c| a | c)
+}
+
+/// Chunk `i` of `n` of `all` (the last one shorter).
+fn chunk(all: &[Cells], i: usize, n: usize) -> &[Cells] {
+    &all[i * n..((i + 1) * n).min(all.len())]
 }
 
 /// What the base layer of an adaptive frame notes as [`Frame::retrace_row`]

@@ -17,12 +17,15 @@ use super::Map;
 use crate::camera::CameraRays;
 use glam::{DMat3, DVec3, Vec3};
 
-/// The quadratic form of a ball's image over the screen: `Q(s) = s' a s`, and
-/// the picture's size.
+/// The quadratic form of a ball's image over the screen: `Q(s) = s' a s`, the
+/// picture's size, and what every band of rows asks of the ellipse: the `sy`
+/// it spans (`None`: empty) and the `sy` of its leftmost and rightmost points.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Conic {
     a: DMat3,
     size: (f64, f64),
+    rows: Option<[f64; 2]>,
+    turns: [f64; 2],
 }
 
 impl Conic {
@@ -73,9 +76,34 @@ impl Conic {
         };
         // An ellipse: negative definite across the screen.
         let (axx, axy, ayy) = (a.x_axis.x, a.x_axis.y, a.y_axis.y);
-        (axx < 0.0 && ayy < 0.0 && axx * ayy - axy * axy > 0.0).then_some(Self {
+        if !(axx < 0.0 && ayy < 0.0 && axx * ayy - axy * axy > 0.0) {
+            return None;
+        }
+        let (ax1, ay1, a11) = (a.x_axis.z, a.y_axis.z, a.z_axis.z);
+        // The rows it spans: where the row's greatest Q, cc - bx^2 / axx, is
+        // not negative (a quadratic in y, negative leading term; Q along a row
+        // is axx x^2 + 2 bx(y) x + cc(y)).
+        let (qa, qb, qc) = (
+            ayy - axy * axy / axx,
+            ay1 - axy * ax1 / axx,
+            a11 - ax1 * ax1 / axx,
+        );
+        let disc = qb * qb - qa * qc;
+        let rows = (disc >= 0.0).then(|| {
+            let (ya, yb) = ((-qb + disc.sqrt()) / qa, (-qb - disc.sqrt()) / qa);
+            [ya.min(yb), ya.max(yb)]
+        });
+        // Its leftmost and rightmost points lie where dQ/dy = 0, on the line
+        // axy x + ayy y + ay1 = 0.
+        let (ex, ey) = (axx - axy * axy / ayy, ax1 - axy * ay1 / ayy);
+        let ec = a11 - ay1 * ay1 / ayy;
+        let xd = (ey * ey - ex * ec).max(0.0).sqrt();
+        let turns = [(-ey + xd) / ex, (-ey - xd) / ex].map(|x| -(axy * x + ay1) / ayy);
+        Some(Self {
             a,
             size: (f64::from(cam.width), f64::from(cam.height)),
+            rows,
+            turns,
         })
     }
 
@@ -85,42 +113,25 @@ impl Conic {
         let (w, h) = self.size;
         let sy = |y: f32| 1.0 - 2.0 * f64::from(y) / h;
         let (lo, hi) = (sy(y1), sy(y0));
-        // Q along a row: axx x^2 + 2 bx(y) x + cc(y).
         let a = &self.a;
         let (axx, axy, ax1) = (a.x_axis.x, a.x_axis.y, a.x_axis.z);
         let (ayy, ay1, a11) = (a.y_axis.y, a.y_axis.z, a.z_axis.z);
         let row = |y: f64| (axy * y + ax1, ayy * y * y + 2.0 * ay1 * y + a11);
-        // The rows it spans: where the row's greatest Q, cc - bx^2 / axx, is
-        // not negative (a quadratic in y, negative leading term).
-        let (qa, qb, qc) = (
-            ayy - axy * axy / axx,
-            ay1 - axy * ax1 / axx,
-            a11 - ax1 * ax1 / axx,
-        );
-        let disc = qb * qb - qa * qc;
-        if disc < 0.0 {
-            return None;
-        }
-        let (ya, yb) = ((-qb + disc.sqrt()) / qa, (-qb - disc.sqrt()) / qa);
-        let (c0, c1) = (lo.max(ya.min(yb)), hi.min(ya.max(yb)));
+        let [ya, yb] = self.rows?;
+        let (c0, c1) = (lo.max(ya), hi.min(yb));
         if c0 > c1 {
             return None;
         }
-        // Its leftmost and rightmost points lie where dQ/dy = 0 (y on the line
-        // axy x + ayy y + ay1 = 0); along the band the left root is convex in
-        // y and the right one concave, so each is extreme at that point's y
-        // clamped to the band.
-        let (ex, ey) = (axx - axy * axy / ayy, ax1 - axy * ay1 / ayy);
-        let ec = a11 - ay1 * ay1 / ayy;
-        let xd = (ey * ey - ex * ec).max(0.0).sqrt();
-        let (x_left, x_right) = ((-ey + xd) / ex, (-ey - xd) / ex);
-        let at = |x: f64| (-(axy * x + ay1) / ayy).clamp(c0, c1);
+        // Along the band the left root is convex in y and the right one
+        // concave, so each is extreme at its extreme point's y clamped to the
+        // band.
+        let at = |y: f64| y.clamp(c0, c1);
         let root = |y: f64, side: f64| {
             let (b, c) = row(y);
             let q = (b * b - axx * c).max(0.0).sqrt();
             (-b + side * q) / axx
         };
-        let (l, r) = (root(at(x_left), 1.0), root(at(x_right), -1.0));
+        let (l, r) = (root(at(self.turns[0]), 1.0), root(at(self.turns[1]), -1.0));
         let px = |x: f64| ((x + 1.0) * 0.5 * w) as f32;
         (l <= r).then(|| (px(l), px(r)))
     }
