@@ -239,7 +239,7 @@ impl Frame<'_> {
         // So are edges whose other samples' segments come near a moved object
         // (only edge pixels have cells in `rm`, so its blocks skip the others),
         // and those whose base pixel, sample 0, was traced again.
-        if let Some(touched) = moved.dirty(y as usize, rm) {
+        if let Some(touched) = moved.dirty(y as usize, rm, false) {
             redo.extend(touched.iter().map(|&x| x as usize).filter(|&x| is[x]));
         }
         redo.extend(dirty.iter().map(|&x| x as usize).filter(|&x| is[x]));

@@ -233,7 +233,7 @@ impl Frame<'_> {
         mut notes: Option<&mut Notes<'_>>,
     ) -> usize {
         let width = self.width() as usize;
-        let Some(dirty) = moved.dirty(y as usize, rm) else {
+        let Some(dirty) = moved.dirty(y as usize, rm, true) else {
             return 0;
         };
         let track = rm.tracked();

@@ -43,8 +43,14 @@ impl Moved {
     /// segments near the moved shapes' box comes within a moved shape whose
     /// cells meet its own, or any moved shape for a pixel in the spans
     /// ([`crate::motion::Near::meets`]). Blocks neither reaches are skipped
-    /// whole; the segments are tested eight at a time ([`Batch`]).
-    pub(crate) fn dirty(&self, y: usize, rm: &RowMotion) -> Option<Vec<u32>> {
+    /// whole; the segments are tested eight at a time ([`Batch`]). With
+    /// `sure`, a pixel in the row's sure runs ([`Spans::sure_row`]: its centre
+    /// well inside a moved ball's image) is taken without its segments: its
+    /// centre ray meets the ball unless something hides it, and a pixel taken
+    /// needlessly is only traced again, so the frame keeps its bytes either
+    /// way (the base layer, one centre sample, asks for it; the edge layer's
+    /// samples lie anywhere in the pixel and each costs three, so it does not).
+    pub(crate) fn dirty(&self, y: usize, rm: &RowMotion, sure: bool) -> Option<Vec<u32>> {
         if !self.reaches(y, rm) {
             return None;
         }
@@ -52,16 +58,16 @@ impl Moved {
         if let Some(s) = Avx2::detect() {
             // SAFETY: the token proves the CPU has AVX2.
             #[expect(unsafe_code, reason = "the run-time dispatch to the AVX2 build")]
-            return unsafe { self.dirty_avx2(s, y, rm) };
+            return unsafe { self.dirty_avx2(s, y, rm, sure) };
         }
-        self.dirty_with(Portable, y, rm)
+        self.dirty_with(Portable, y, rm, sure)
     }
 
     /// [`Self::dirty`] compiled for AVX2.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
-    fn dirty_avx2(&self, s: Avx2, y: usize, rm: &RowMotion) -> Option<Vec<u32>> {
-        self.dirty_with(s, y, rm)
+    fn dirty_avx2(&self, s: Avx2, y: usize, rm: &RowMotion, sure: bool) -> Option<Vec<u32>> {
+        self.dirty_with(s, y, rm, sure)
     }
 
     /// [`Self::dirty`] after its row test, in lane build `s`.
@@ -70,14 +76,15 @@ impl Moved {
         reason = "inlined into each build, so the AVX2 one compiles it for AVX2"
     )]
     #[inline(always)]
-    fn dirty_with<S: Simd>(&self, s: S, y: usize, rm: &RowMotion) -> Option<Vec<u32>> {
+    fn dirty_with<S: Simd>(&self, s: S, y: usize, rm: &RowMotion, sure: bool) -> Option<Vec<u32>> {
         let n = rm.cells.len();
         let mut room = BitRoom::new();
         let mut hit = room.row(n);
         let mut batch = Batch::default();
         let runs = self.spans.row(y);
+        let sure = if sure { self.spans.sure_row(y) } else { &[] };
         // The first run that ends after the pixel at hand (pixels ascend).
-        let mut r = 0;
+        let (mut r, mut sr) = (0, 0);
         for (i, &c) in rm.supers.iter().enumerate() {
             let (b0, b1) = (i * SUPER, ((i + 1) * SUPER).min(rm.blocks.len()));
             if !may_hold(
@@ -93,7 +100,13 @@ impl Moved {
                 if !may_hold(runs, &mut r, rm.blocks[b] & self.cells, (x0, x1)) {
                     continue;
                 }
-                self.block(s, (rm, x0..x1), (runs, &mut r), (&mut batch, &mut hit));
+                self.block(
+                    s,
+                    (rm, x0..x1),
+                    (runs, &mut r),
+                    (sure, &mut sr),
+                    (&mut batch, &mut hit),
+                );
             }
         }
         batch.test(s, &self.near, &mut hit);
@@ -115,6 +128,7 @@ impl Moved {
         s: S,
         (rm, xs): (&RowMotion, std::ops::Range<usize>),
         (runs, r): (&[(u32, u32)], &mut usize),
+        (sure, sr): (&[(u32, u32)], &mut usize),
         (batch, hit): (&mut Batch, &mut crate::bits::RowBits<'_>),
     ) {
         let cells_only = !rm.tracked() || self.coarse;
@@ -133,6 +147,13 @@ impl Moved {
                 continue;
             }
             if cells_only {
+                hit.set(k);
+                continue;
+            }
+            while *sr < sure.len() && sure[*sr].1 as usize <= k {
+                *sr += 1;
+            }
+            if sure.get(*sr).is_some_and(|run| run.0 as usize <= k) {
                 hit.set(k);
                 continue;
             }

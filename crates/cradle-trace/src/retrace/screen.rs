@@ -18,8 +18,10 @@ use glam::Vec3;
 
 mod ball;
 mod conic;
+mod rod;
 use ball::ball_box;
 use conic::Conic;
+use rod::{band_x, rod_region};
 
 /// Pixels added on each side of a region's screen box. Pixel `k` holds samples
 /// at `k + [0, 1)`, so the pixels whose samples can fall within `x0..=x1` are
@@ -39,6 +41,10 @@ pub(crate) struct Spans {
     runs: Vec<(u32, u32)>,
     /// Row `y`'s runs: `runs[start[y]..start[y + 1]]`.
     start: Vec<u32>,
+    /// Within the runs, those of pixels whose centre sample lies well inside a
+    /// ball's image (`sure_start` as `start`): [`Spans::sure_row`].
+    sure: Vec<(u32, u32)>,
+    sure_start: Vec<u32>,
 }
 
 impl Spans {
@@ -47,10 +53,11 @@ impl Spans {
     pub(crate) fn new(cam: &CameraRays, scene: &Scene, pieces: Option<&[Piece]>) -> Self {
         let (w, h) = scene.size;
         let mut cover: Vec<(u32, u32, u32)> = Vec::new();
+        let mut sure: Vec<(u32, u32, u32)> = Vec::new();
         let whole = [[0.0, w as f32], [0.0, h as f32]];
         // Clamped to the picture (NaN to 0: `as` saturates).
         let px = |v: f32, n: u32| (v.max(0.0) as u32).min(n);
-        let mut add = |r: Option<Region>| match r.unwrap_or(Region::Box(whole)) {
+        let mut add = |r: Option<Region>, sure_ok: bool| match r.unwrap_or(Region::Box(whole)) {
             Region::Box([[x0, x1], [y0, y1]]) => {
                 let (x0, x1) = (px((x0 - PAD_PX).floor(), w), px((x1 + PAD_PX).ceil(), w));
                 let (y0, y1) = (px((y0 - PAD_PX).floor(), h), px((y1 + PAD_PX).ceil(), h));
@@ -67,6 +74,16 @@ impl Spans {
                         let (l, r) = (px(l.floor(), w), px(r.ceil(), w));
                         if l < r {
                             cover.push((y, l, r));
+                        }
+                    }
+                    // The pixels whose centre lies inside the ellipse at the
+                    // row's centre line by more than SURE_PX.
+                    let mid = y as f32 + 0.5;
+                    if let Some((l, r)) = conic.band_x((mid, mid)).filter(|_| sure_ok) {
+                        let (l, r) = (l.max(x0) + SURE_PX - 0.5, r.min(x1) - SURE_PX - 0.5);
+                        let (l, r) = (px(l.ceil(), w), px(r.floor() + 1.0, w));
+                        if l < r {
+                            sure.push((y, l, r));
                         }
                     }
                 }
@@ -87,42 +104,72 @@ impl Spans {
             }
         };
         match pieces {
-            None => add(None),
+            None => add(None, false),
             Some(pieces) => {
                 let maps = maps(scene);
                 for piece in pieces {
                     for m in &maps {
-                        add(piece.region(cam, m));
+                        add(piece.region(cam, m), m.sure());
                     }
                 }
             }
         }
-        cover.sort_unstable();
-        let mut runs: Vec<(u32, u32)> = Vec::with_capacity(cover.len());
-        let mut start = vec![0u32; h as usize + 1];
-        let mut last_y = u32::MAX;
-        for (y, x0, x1) in cover {
-            match runs.last_mut() {
-                Some(run) if y == last_y && x0 <= run.1 => run.1 = run.1.max(x1),
-                _ => runs.push((x0, x1)),
-            }
-            last_y = y;
-            start[y as usize + 1] = runs.len() as u32;
+        let (runs, start) = merged(cover, h);
+        let (sure, sure_start) = merged(sure, h);
+        Self {
+            runs,
+            start,
+            sure,
+            sure_start,
         }
-        // Rows without runs start where the row before ends.
-        for y in 1..start.len() {
-            start[y] = start[y].max(start[y - 1]);
-        }
-        Self { runs, start }
     }
 
     /// Row `y`'s runs (none past the picture).
     pub(crate) fn row(&self, y: usize) -> &[(u32, u32)] {
-        match (self.start.get(y), self.start.get(y + 1)) {
-            (Some(&a), Some(&b)) => &self.runs[a as usize..b as usize],
-            _ => &[],
-        }
+        of_row(&self.runs, &self.start, y)
     }
+
+    /// Row `y`'s runs of pixels whose centre sample lies inside a ball's image
+    /// (its camera ray, or its mirror ray or shadow ray off the plane, meets the
+    /// ball) by more than [`SURE_PX`]: such a pixel comes near the ball unless
+    /// something hides it, so the filter takes it without reading its segments
+    /// (one hidden is traced again needlessly, never wrongly).
+    pub(crate) fn sure_row(&self, y: usize) -> &[(u32, u32)] {
+        of_row(&self.sure, &self.sure_start, y)
+    }
+}
+
+/// Pixels a centre must lie inside a ball's image for [`Spans::sure_row`].
+const SURE_PX: f32 = 1.0;
+
+/// Row `y`'s runs of `runs` whose rows start at `start`.
+fn of_row<'a>(runs: &'a [(u32, u32)], start: &[u32], y: usize) -> &'a [(u32, u32)] {
+    match (start.get(y), start.get(y + 1)) {
+        (Some(&a), Some(&b)) => &runs[a as usize..b as usize],
+        _ => &[],
+    }
+}
+
+/// The rows' runs of `cover` (row, x0, x1) merged where they meet, and where
+/// each row's begin (`h + 1` entries).
+fn merged(mut cover: Vec<(u32, u32, u32)>, h: u32) -> (Vec<(u32, u32)>, Vec<u32>) {
+    cover.sort_unstable();
+    let mut runs: Vec<(u32, u32)> = Vec::with_capacity(cover.len());
+    let mut start = vec![0u32; h as usize + 1];
+    let mut last_y = u32::MAX;
+    for (y, x0, x1) in cover {
+        match runs.last_mut() {
+            Some(run) if y == last_y && x0 <= run.1 => run.1 = run.1.max(x1),
+            _ => runs.push((x0, x1)),
+        }
+        last_y = y;
+        start[y as usize + 1] = runs.len() as u32;
+    }
+    // Rows without runs start where the row before ends.
+    for y in 1..start.len() {
+        start[y] = start[y].max(start[y - 1]);
+    }
+    (runs, start)
 }
 
 /// A part of a moved shape, grown as [`crate::motion::Near`] grows it (and
@@ -226,6 +273,18 @@ fn maps(scene: &Scene) -> Vec<Map> {
     out
 }
 
+impl Map {
+    /// Whether a pixel well inside a ball's image under the map is taken
+    /// without its segments ([`Spans::sure_row`]): under the eye's and the
+    /// mirror's, nearly always rightly (none of the default swing's pixels is
+    /// traced needlessly); a shadow's interior held 860 pixels a frame that
+    /// its segments would not have sent (hidden, or already in another
+    /// shadow), which cost more to trace than their segments to test.
+    fn sure(&self) -> bool {
+        matches!(self, Map::Eye | Map::Mirror { .. })
+    }
+}
+
 /// Where `x` goes under `m`; `None` where the image is unbounded (a point
 /// level with or above the light, a light along the plane).
 fn apply(m: &Map, x: Vec3) -> Option<Vec3> {
@@ -277,77 +336,6 @@ fn screen_box(cam: &CameraRays, b: &Aabb, m: &Map) -> Option<[[f32; 2]; 2]> {
         r[1] = [r[1][0].min(y), r[1][1].max(y)];
     }
     Some(r)
-}
-
-/// The region of the rod from `a` to `b` of radius `g` under `m`: the box
-/// around it (along its axis, and `g` either side across, which holds the
-/// capsule) has 8 corners whose images bound its image; on the screen they
-/// lie in a rectangle along the image of the axis (a straight line: every map
-/// keeps lines straight), padded by [`PAD_PX`]. `None` where a corner's image
-/// is unbounded or behind the eye.
-fn rod_region(cam: &CameraRays, (a, b, g): (Vec3, Vec3, f32), m: &Map) -> Option<Region> {
-    // (A piece of no length: any axis; the box then holds the ball around it.)
-    let w = (b - a).try_normalize().unwrap_or(Vec3::X);
-    let (e1, e2) = w.any_orthonormal_pair();
-    let (a, b) = (a - w * g, b + w * g);
-    let mut q = [(0.0f32, 0.0f32); 8];
-    for (i, q) in q.iter_mut().enumerate() {
-        let end = if i & 1 == 0 { a } else { b };
-        let s1 = if i & 2 == 0 { -g } else { g };
-        let s2 = if i & 4 == 0 { -g } else { g };
-        *q = cam.project(apply(m, end + e1 * s1 + e2 * s2)?)?;
-        if !(q.0.is_finite() && q.1.is_finite()) {
-            return None;
-        }
-    }
-    // The axis on the screen: through the images of its ends.
-    let (o, e) = (cam.project(apply(m, a)?)?, cam.project(apply(m, b)?)?);
-    let (dx, dy) = (e.0 - o.0, e.1 - o.1);
-    let len = (dx * dx + dy * dy).sqrt();
-    if len.is_nan() || len <= 1e-3 {
-        let (lo, hi) = q
-            .iter()
-            .fold(((f32::MAX, f32::MAX), (f32::MIN, f32::MIN)), |(l, h), p| {
-                ((l.0.min(p.0), l.1.min(p.1)), (h.0.max(p.0), h.1.max(p.1)))
-            });
-        return Some(Region::Box([[lo.0, hi.0], [lo.1, hi.1]]));
-    }
-    let (u, v) = ((dx / len, dy / len), (-dy / len, dx / len));
-    let at = |p: &(f32, f32), d: (f32, f32)| (p.0 - o.0) * d.0 + (p.1 - o.1) * d.1;
-    let span = |d| {
-        q.iter().fold((f32::MAX, f32::MIN), |(l, h), p| {
-            (l.min(at(p, d)), h.max(at(p, d)))
-        })
-    };
-    let ((t0, t1), (s0, s1)) = (span(u), span(v));
-    let (t0, t1, s0, s1) = (t0 - PAD_PX, t1 + PAD_PX, s0 - PAD_PX, s1 + PAD_PX);
-    let corner = |t: f32, s: f32| (o.0 + u.0 * t + v.0 * s, o.1 + u.1 * t + v.1 * s);
-    Some(Region::Quad([
-        corner(t0, s0),
-        corner(t1, s0),
-        corner(t1, s1),
-        corner(t0, s1),
-    ]))
-}
-
-/// The least and greatest x of the convex quad `q` within the band of rows
-/// from `y0` to `y1`: among its corners in the band and where its sides cross
-/// the band's edges. `None` where it misses the band.
-fn band_x(q: &[(f32, f32); 4], (y0, y1): (f32, f32)) -> Option<(f32, f32)> {
-    let (mut lo, mut hi) = (f32::MAX, f32::MIN);
-    for i in 0..4 {
-        let (p, r) = (q[i], q[(i + 1) % 4]);
-        if (y0..=y1).contains(&p.1) {
-            (lo, hi) = (lo.min(p.0), hi.max(p.0));
-        }
-        for y in [y0, y1] {
-            if (p.1 - y) * (r.1 - y) < 0.0 {
-                let x = p.0 + (r.0 - p.0) * ((y - p.1) / (r.1 - p.1));
-                (lo, hi) = (lo.min(x), hi.max(x));
-            }
-        }
-    }
-    (lo <= hi).then_some((lo, hi))
 }
 
 #[cfg(test)]

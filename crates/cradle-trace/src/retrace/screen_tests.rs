@@ -171,6 +171,41 @@ fn a_balls_ellipse_holds_its_image_row_by_row_and_cuts_the_boxs_corners() {
 }
 
 #[test]
+fn sure_runs_hold_pixels_whose_centre_ray_meets_the_ball_or_its_mirror_image() {
+    let sc = scene();
+    let cam = CameraRays::new(&sc.camera, sc.size.0, sc.size.1);
+    let (c, r) = (Vec3::new(0.03, 0.1, 0.0), 0.02);
+    // The ball's image in the floor (y = 0): the camera ray, straight on past
+    // the floor, meets the mirrored ball where the mirror ray meets the ball.
+    let image = Vec3::new(c.x, -c.y, c.z);
+    let spans = Spans::new(&cam, &sc, Some(&[Piece::Ball(c, r)]));
+    let meets = |x: u32, y: u32, centre: Vec3| {
+        let ray = cam.ray(x as f32 + 0.5, y as f32 + 0.5);
+        let oc = ray.origin - centre;
+        let b = oc.dot(ray.dir);
+        b * b - (oc.length_squared() - r * r) >= 0.0
+    };
+    let (mut sure, mut seen) = (0, 0);
+    for y in 0..sc.size.1 {
+        let (runs, sures) = (spans.row(y as usize), spans.sure_row(y as usize));
+        let within = |x: u32, rs: &[(u32, u32)]| rs.iter().any(|&(a, b)| a <= x && x < b);
+        for x in 0..sc.size.0 {
+            let on = meets(x, y, c) || meets(x, y, image);
+            seen += usize::from(on);
+            if within(x, sures) {
+                sure += 1;
+                assert!(within(x, runs), "pixel ({x}, {y}) sure but in no run");
+                assert!(on, "pixel ({x}, {y}) sure but its centre ray misses");
+            }
+        }
+    }
+    // All but a pixel's ring round each image: most of them (here the ball
+    // is about 22 pixels across).
+    assert!(seen > 400, "{seen} pixels see the ball or its image");
+    assert!(sure * 10 > seen * 7, "{sure} sure of {seen}");
+}
+
+#[test]
 fn spans_hold_every_pixel_whose_camera_ray_meets_the_ball() {
     let sc = scene();
     let cam = CameraRays::new(&sc.camera, sc.size.0, sc.size.1);
