@@ -100,6 +100,7 @@ impl Frame<'_> {
             }
             rm.begin(true);
             rm.seal();
+            rm.room();
             rm
         });
         let layers = Layers {

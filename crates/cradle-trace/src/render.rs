@@ -243,6 +243,7 @@ impl<'a> Frame<'a> {
         }
         rm.begin(track);
         rm.seal();
+        rm.room();
         rm
     }
 

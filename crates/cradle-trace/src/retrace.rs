@@ -105,6 +105,17 @@ impl RowMotion {
         self.any = union(&self.supers);
     }
 
+    /// Gives a freshly filled record's segments room for as many again and a
+    /// quarter (call it once the row is traced in full): the next frames
+    /// append the segments of the pixels they trace until [`Self::compact`],
+    /// which keeps the room, instead of growing the buffer by copying it (13
+    /// rows a frame of the default swing did for its first seconds).
+    pub(crate) fn room(&mut self) {
+        if self.tracked() {
+            self.segs.reserve(self.segs.len() + self.segs.len() / 4);
+        }
+    }
+
     /// Whether some pixel's cells meet `cells` (after [`Self::seal`]).
     pub(crate) fn meets(&self, cells: Cells) -> bool {
         self.any & cells != 0
@@ -346,5 +357,43 @@ impl Frame<'_> {
                 n.note(k, true, (&before, px), c);
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{RowMotion, Seg};
+    use glam::Vec3;
+
+    #[test]
+    fn a_filled_row_takes_as_many_segments_again_without_moving_its_buffer() {
+        let seg = Seg {
+            a: Vec3::ZERO,
+            b: Vec3::ONE,
+        };
+        let mut rm = RowMotion::new(100, true);
+        for _ in 0..100 {
+            rm.begin(true);
+            rm.segs.extend([seg; 3]);
+        }
+        rm.begin(true);
+        rm.seal();
+        rm.room();
+        let (len, at) = (rm.segs.len(), rm.segs.as_ptr());
+        // Every pixel traced again with its three segments, and a quarter of
+        // them with one more: garbage up to the live segments, then compacted.
+        for k in 0..100 {
+            let n = if k % 4 == 0 { 4 } else { 3 };
+            rm.retrace(k, |out| {
+                out.extend(std::iter::repeat_n(seg, n));
+                (1, ())
+            });
+        }
+        assert_eq!(rm.segs.len(), len + 325);
+        assert_eq!(rm.segs.as_ptr(), at, "the buffer grew");
+        // An untracked record takes no room.
+        let mut bare = RowMotion::new(100, false);
+        bare.room();
+        assert_eq!(bare.segs.capacity(), 0);
     }
 }
