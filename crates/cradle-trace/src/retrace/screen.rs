@@ -42,7 +42,8 @@ pub(crate) struct Spans {
     /// Row `y`'s runs: `runs[start[y]..start[y + 1]]`.
     start: Vec<u32>,
     /// Within the runs, those of pixels whose centre sample lies well inside a
-    /// ball's image (`sure_start` as `start`): [`Spans::sure_row`].
+    /// ball's image or its mirror image (`sure_start` as `start`):
+    /// [`Spans::sure_row`].
     sure: Vec<(u32, u32)>,
     sure_start: Vec<u32>,
 }
@@ -130,8 +131,8 @@ impl Spans {
     }
 
     /// Row `y`'s runs of pixels whose centre sample lies inside a ball's image
-    /// (its camera ray, or its mirror ray or shadow ray off the plane, meets the
-    /// ball) by more than [`SURE_PX`]: such a pixel comes near the ball unless
+    /// or its mirror image (its camera ray, or its mirror ray off the plane,
+    /// meets the ball) by more than [`SURE_PX`]: such a pixel comes near the ball unless
     /// something hides it, so the filter takes it without reading its segments
     /// (one hidden is traced again needlessly, never wrongly).
     pub(crate) fn sure_row(&self, y: usize) -> &[(u32, u32)] {
