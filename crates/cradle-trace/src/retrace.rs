@@ -381,7 +381,8 @@ mod tests {
         rm.room();
         let (len, at) = (rm.segs.len(), rm.segs.as_ptr());
         // Every pixel traced again with its three segments, and a quarter of
-        // them with one more: garbage up to the live segments, then compacted.
+        // them with one more: as much garbage as live segments, the most a
+        // row holds before `compact` drops the garbage.
         for k in 0..100 {
             let n = if k % 4 == 0 { 4 } else { 3 };
             rm.retrace(k, |out| {
