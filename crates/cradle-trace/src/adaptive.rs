@@ -14,11 +14,12 @@
 //!
 //! So each frame equals the full adaptive render byte for byte (tested).
 
-use super::bits::ascending;
+use super::bits::{BitRoom, ascending};
 use super::color::Image;
 
 use super::render::{Frame, for_rows};
 use super::retrace::{Moved, Notes, RowMotion};
+use super::supersample::Supersamples;
 use glam::Vec3;
 use rayon::prelude::*;
 
@@ -50,6 +51,21 @@ pub(crate) struct Layers {
     /// Per row, the motion record of the edge pixels' other samples (others:
     /// none).
     edge_rows: Vec<RowMotion>,
+    /// Per row, what the last frame noted (the buffers kept for the next):
+    /// the base pixels traced again where motion may have changed them, those
+    /// whose bytes changed, and the pixels whose edge flag flipped.
+    dirty: Vec<Vec<u32>>,
+    changed: Vec<Vec<u32>>,
+    flips: Vec<Vec<u32>>,
+}
+
+/// Buffers a thread's rows of the picture use in turn ([`Frame::final_row`]).
+#[derive(Default)]
+struct Scratch {
+    redo: Vec<usize>,
+    sorted: Vec<usize>,
+    touched: Vec<u32>,
+    samples: Supersamples,
 }
 
 impl Frame<'_> {
@@ -86,7 +102,9 @@ impl Frame<'_> {
             let (flags, lin) = (&edge[span.clone()], &lin[span]);
             let mut rm = RowMotion::new(n, true);
             let xs: Vec<usize> = (0..n).filter(|&x| flags[x]).collect();
-            let (done, segs) = self.supersampled(y, &xs, |x| lin[x]);
+            let mut samples = Supersamples::default();
+            self.supersampled(y, &xs, |x| lin[x], &mut samples);
+            let Supersamples { done, segs } = samples;
             let mut done = done.into_iter();
             for (x, px) in row.chunks_exact_mut(4).enumerate() {
                 rm.begin(true);
@@ -109,6 +127,9 @@ impl Frame<'_> {
             edge,
             lin,
             edge_rows,
+            dirty: vec![Vec::new(); h as usize],
+            changed: vec![Vec::new(); h as usize],
+            flips: vec![Vec::new(); h as usize],
         };
         (img, layers)
     }
@@ -126,33 +147,41 @@ impl Frame<'_> {
         let stride = w * 4;
         // The base layer, noting per row the pixels motion may have changed and
         // those whose bytes changed.
-        let rows: Vec<_> = layers
+        let mut traced: usize = layers
             .base
             .rgba
             .par_chunks_exact_mut(stride)
             .zip(layers.base_rows.par_iter_mut())
             .zip(layers.lin.par_chunks_exact_mut(w))
+            .zip(
+                layers
+                    .dirty
+                    .par_iter_mut()
+                    .zip(layers.changed.par_iter_mut()),
+            )
             .enumerate()
-            .map(|(y, ((row, rm), lin))| {
+            .map(|(y, (((row, rm), lin), (dirty, changed)))| {
+                changed.clear();
                 let mut notes = Notes {
-                    dirty: Vec::new(),
-                    changed: Vec::new(),
+                    dirty: std::mem::take(dirty),
+                    changed: std::mem::take(changed),
                     lin,
                 };
                 let n = self.retrace_row(y as u32, row, rm, (moved, &CENTRE), Some(&mut notes));
-                (n, notes.dirty, notes.changed)
+                (*dirty, *changed) = (notes.dirty, notes.changed);
+                n
             })
-            .collect();
-        let mut traced: usize = rows.iter().map(|r| r.0).sum();
-        let (dirty, xs): (Vec<_>, Vec<_>) = rows.into_iter().map(|(_, d, c)| (d, c)).unzip();
-        let (base, lin) = (&layers.base.rgba, &layers.lin);
+            .sum();
+        let (base, lin, xs) = (&layers.base.rgba, &layers.lin, &layers.changed);
         // The edge test again at each changed pixel and its 4-neighbours, in
         // place: per row, the pixels whose flag flipped.
-        let flips: Vec<Vec<u32>> = layers
+        layers
             .edge
             .par_chunks_exact_mut(w)
+            .zip(layers.flips.par_iter_mut())
             .enumerate()
-            .map(|(y, flags)| {
+            .for_each(|(y, (flags, flipped))| {
+                flipped.clear();
                 let beside = [y.checked_sub(1), Some(y + 1).filter(|&v| v < h)];
                 let above_below = beside
                     .into_iter()
@@ -161,24 +190,24 @@ impl Frame<'_> {
                 let here = xs[y]
                     .iter()
                     .flat_map(|&x| x.saturating_sub(1) as usize..(x as usize + 2).min(w));
-                let mut flipped = Vec::new();
-                for x in ascending(w, above_below.chain(here)) {
+                let mut room = BitRoom::new();
+                let mut bits = room.row(w);
+                above_below.chain(here).for_each(|x| bits.set(x));
+                for x in bits.iter() {
                     let now = self.is_edge(base, x as u32, y as u32, threshold);
                     if now != flags[x] {
                         flags[x] = now;
                         flipped.push(x as u32);
                     }
                 }
-                flipped
-            })
-            .collect();
-        let edge = &layers.edge;
+            });
+        let (edge, dirty, flips) = (&layers.edge, &layers.dirty, &layers.flips);
         traced += img
             .rgba
             .par_chunks_exact_mut(stride)
             .zip(layers.edge_rows.par_iter_mut())
             .enumerate()
-            .map(|(y, (row, rm))| {
+            .map_init(Scratch::default, |scratch, (y, (row, rm))| {
                 let span = y * w..(y + 1) * w;
                 let base = Base {
                     bytes: &base[y * stride..(y + 1) * stride],
@@ -186,7 +215,8 @@ impl Frame<'_> {
                     dirty: &dirty[y],
                     changed: &xs[y],
                 };
-                self.final_row(y as u32, (row, rm), &base, (&edge[span], &flips[y]), moved)
+                let at = (y as u32, row, rm);
+                self.final_row(at, &base, (&edge[span], &flips[y]), moved, scratch)
             })
             .sum::<usize>();
         traced
@@ -197,11 +227,11 @@ impl Frame<'_> {
     /// row's edge flags; `flips`: the pixels whose flag this frame flipped.
     fn final_row(
         &self,
-        y: u32,
-        (row, rm): (&mut [u8], &mut RowMotion),
+        (y, row, rm): (u32, &mut [u8], &mut RowMotion),
         base: &Base<'_>,
         (is, flips): (&[bool], &[u32]),
         moved: &Moved,
+        scratch: &mut Scratch,
     ) -> usize {
         let w = is.len();
         let Base {
@@ -227,7 +257,13 @@ impl Frame<'_> {
         }
         // Pixels that stop being edges show the base colour and drop their
         // record; new edges are supersampled.
-        let mut redo: Vec<usize> = Vec::new();
+        let Scratch {
+            redo,
+            sorted,
+            touched,
+            samples,
+        } = scratch;
+        redo.clear();
         for &x in flips {
             let x = x as usize;
             if is[x] {
@@ -240,28 +276,28 @@ impl Frame<'_> {
         // So are edges whose other samples' segments come near a moved object
         // (only edge pixels have cells in `rm`, so its blocks skip the others),
         // and those whose base pixel, sample 0, was traced again.
-        if let Some(touched) = moved.dirty(y as usize, rm, false) {
+        if moved.dirty(y as usize, rm, false, touched) {
             redo.extend(touched.iter().map(|&x| x as usize).filter(|&x| is[x]));
         }
         redo.extend(dirty.iter().map(|&x| x as usize).filter(|&x| is[x]));
         if redo.is_empty() && flips.is_empty() {
             return 0;
         }
-        let redo = ascending(w, redo);
-        let (done, segs) = self.supersampled(y, &redo, |x| lin[x]);
-        for (&x, ((bytes, cells), span)) in redo.iter().zip(done) {
-            row[x * 4..x * 4 + 4].copy_from_slice(&bytes);
+        ascending(w, redo.iter().copied(), sorted);
+        self.supersampled(y, sorted, |x| lin[x], samples);
+        for (&x, ((bytes, cells), span)) in sorted.iter().zip(&samples.done) {
+            row[x * 4..x * 4 + 4].copy_from_slice(bytes);
             rm.retrace(x, |out| {
-                out.extend_from_slice(&segs[span]);
-                (cells, ())
+                out.extend_from_slice(&samples.segs[span.clone()]);
+                (*cells, ())
             });
         }
-        let traced = redo.len();
+        let traced = sorted.len();
         rm.compact();
         // The blocks of the pixels whose cells changed: those traced again and
-        // those that stopped being edges.
-        let cleared = flips.iter().map(|&x| x as usize).filter(|&x| !is[x]);
-        rm.reseal(ascending(w, redo.iter().copied().chain(cleared)));
+        // those that stopped being edges (each ascending).
+        rm.reseal(sorted.iter().copied());
+        rm.reseal(flips.iter().map(|&x| x as usize).filter(|&x| !is[x]));
         traced
     }
 }

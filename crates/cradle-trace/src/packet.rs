@@ -48,6 +48,7 @@ mod notes;
 mod objects;
 mod occlusion;
 mod samples;
+pub(crate) mod spare;
 mod vec;
 
 use vec::{L3, Surface, load3, splat3, store3};
@@ -156,6 +157,13 @@ pub(crate) struct Packet<'a, 'p> {
     /// The linear colours of the last packet's lanes (those it wrote), as
     /// red, green and blue lanes: see [`Self::color`].
     pub(crate) colors: Cell<[F8; 3]>,
+}
+
+impl Drop for Packet<'_, '_> {
+    /// Gives the lanes' segment buffers back to the thread's spares.
+    fn drop(&mut self) {
+        spare::give(std::mem::take(self.segs.get_mut()));
+    }
 }
 
 impl Packet<'_, '_> {

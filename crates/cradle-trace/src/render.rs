@@ -13,6 +13,7 @@ use super::retrace::RowMotion;
 use super::sampling::sample_offsets;
 use super::scene::Scene;
 use super::shade::{radiance_bound, trace, trace_primary};
+use super::supersample::Supersamples;
 use super::tiles::Tiles;
 use glam::Vec3;
 use rayon::prelude::*;
@@ -169,10 +170,8 @@ impl<'a> Frame<'a> {
             bound: self.bound,
             motion: self.motion,
             marks: std::cell::Cell::new([0; LANES]),
-            // Room for a packet's segments in a tracked frame.
-            segs: std::cell::RefCell::new(std::array::from_fn(|_| {
-                Vec::with_capacity(if self.motion.is_some() { 16 } else { 0 })
-            })),
+            // The thread's spare buffers for a packet's segments.
+            segs: std::cell::RefCell::new(crate::packet::spare::take(self.motion.is_some())),
             colors: std::cell::Cell::new([[0.0; LANES]; 3]),
         })
     }
@@ -295,8 +294,9 @@ impl<'a> Frame<'a> {
                 .map(|x| x as usize)
                 .collect();
             let mut cells: Vec<Cells> = vec![0; self.width as usize];
-            let (done, _) = self.supersampled(y, &xs, |x| lin[y as usize][x]);
-            for (&x, ((bytes, c), _)) in xs.iter().zip(done) {
+            let mut done = Supersamples::default();
+            self.supersampled(y, &xs, |x| lin[y as usize][x], &mut done);
+            for (&x, ((bytes, c), _)) in xs.iter().zip(done.done) {
                 row[x * 4..x * 4 + 4].copy_from_slice(&bytes);
                 cells[x] = c;
             }

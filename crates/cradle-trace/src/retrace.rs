@@ -200,7 +200,8 @@ fn chunk(all: &[Cells], i: usize, n: usize) -> &[Cells] {
 /// traces its pixels again.
 #[derive(Debug)]
 pub(crate) struct Notes<'r> {
-    /// The x of each pixel the motion may have changed (its colour traced again).
+    /// The x of each pixel the motion may have changed (its colour traced
+    /// again), as [`Moved::dirty`] finds them.
     pub(crate) dirty: Vec<u32>,
     /// The x of each traced pixel whose bytes changed.
     pub(crate) changed: Vec<u32>,
@@ -209,13 +210,9 @@ pub(crate) struct Notes<'r> {
 }
 
 impl Notes<'_> {
-    /// Notes traced pixel `k`: `dirty` whether motion may have changed it, its
-    /// bytes `before` and `after`, its colour `c`.
-    fn note(&mut self, k: usize, dirty: bool, (before, after): (&[u8], &[u8]), c: Vec3) {
+    /// Notes traced pixel `k`: its bytes `before` and `after`, its colour `c`.
+    fn note(&mut self, k: usize, (before, after): (&[u8], &[u8]), c: Vec3) {
         self.lin[k] = c;
-        if dirty {
-            self.dirty.push(k as u32);
-        }
         if before != after {
             self.changed.push(k as u32);
         }
@@ -243,24 +240,42 @@ impl Frame<'_> {
         (moved, offsets): (&Moved, &[(f32, f32)]),
         mut notes: Option<&mut Notes<'_>>,
     ) -> usize {
+        // The dirty pixels go to the notes' buffer (kept from frame to frame).
+        let mut dirty = notes
+            .as_deref_mut()
+            .map(|n| std::mem::take(&mut n.dirty))
+            .unwrap_or_default();
+        let mut traced = 0;
+        if moved.dirty(y as usize, rm, true, &mut dirty) {
+            traced = self.retrace_dirty((y, row, rm), (&dirty, offsets), notes.as_deref_mut());
+        }
+        if let Some(n) = notes {
+            n.dirty = dirty;
+        }
+        traced
+    }
+
+    /// [`Self::retrace_row`] of the pixels `dirty` (ascending, not empty).
+    fn retrace_dirty(
+        &self,
+        (y, row, rm): (u32, &mut [u8], &mut RowMotion),
+        (dirty, offsets): (&[u32], &[(f32, f32)]),
+        mut notes: Option<&mut Notes<'_>>,
+    ) -> usize {
         let width = self.width() as usize;
-        let Some(dirty) = moved.dirty(y as usize, rm, true) else {
-            return 0;
-        };
         let track = rm.tracked();
         if let Some(n) = notes.as_deref_mut() {
-            // `dirty` notes exactly these pixels; `changed` at most the traced
-            // ones (up to a run of eight each), seldom more than twice as many.
-            n.dirty.reserve(dirty.len());
+            // `changed` holds at most the traced pixels (up to a run of eight
+            // each), seldom more than twice as many as the dirty ones.
             n.changed.reserve(dirty.len() * 2);
         }
         let packets = self.packets(offsets);
         let mut traced = 0;
         // Dirty pixels no floor packet traced, for the eye rays' lanes.
-        let mut left: Vec<usize> = Vec::with_capacity(LANES);
+        let (mut left, mut n_left) = ([0; LANES], 0);
         // Run by run of LANES pixels holding a dirty one: `mask` a bit per
         // dirty pixel of the run.
-        let mut rest = &dirty[..];
+        let mut rest = dirty;
         while let Some(&first) = rest.first() {
             let x = first as usize / LANES * LANES;
             let end = (x + LANES).min(width);
@@ -285,7 +300,7 @@ impl Frame<'_> {
                         if let Some(n) = notes.as_deref_mut() {
                             let i = (k - x) * 4;
                             let bytes = (&before[i..i + 4], &span[i..i + 4]);
-                            n.note(k, mask & (1 << (k - x)) != 0, bytes, pk.color(k - x));
+                            n.note(k, bytes, pk.color(k - x));
                         }
                         traced += 1;
                     }
@@ -297,10 +312,11 @@ impl Frame<'_> {
                 traced += 1;
                 if let Some(pk) = &packets {
                     // Eight at a time over the lanes, as eye rays.
-                    left.push(k);
-                    if left.len() == LANES {
+                    left[n_left] = k;
+                    n_left += 1;
+                    if n_left == LANES {
                         Self::eye_rays(pk, (y, &left, offsets[0]), (row, rm), notes.as_deref_mut());
-                        left.clear();
+                        n_left = 0;
                     }
                     continue;
                 }
@@ -309,14 +325,14 @@ impl Frame<'_> {
                 let at = (k as u32, y);
                 let c = rm.retrace(k, |segs| self.put(at, px, (None, offsets), segs));
                 if let Some(n) = notes.as_deref_mut() {
-                    n.note(k, true, (&before, px), c);
+                    n.note(k, (&before, px), c);
                 }
             }
         }
         if let Some(pk) = &packets
-            && !left.is_empty()
+            && n_left > 0
         {
-            Self::eye_rays(pk, (y, &left, offsets[0]), (row, rm), notes);
+            Self::eye_rays(pk, (y, &left[..n_left], offsets[0]), (row, rm), notes);
         }
         rm.compact();
         // Only pixels of dirty runs changed their cells.
@@ -354,47 +370,11 @@ impl Frame<'_> {
                 (marks[i], ())
             });
             if let Some(n) = notes.as_deref_mut() {
-                n.note(k, true, (&before, px), c);
+                n.note(k, (&before, px), c);
             }
         }
     }
 }
 
 #[cfg(test)]
-mod tests {
-    use super::{RowMotion, Seg};
-    use glam::Vec3;
-
-    #[test]
-    fn a_filled_row_takes_as_many_segments_again_without_moving_its_buffer() {
-        let seg = Seg {
-            a: Vec3::ZERO,
-            b: Vec3::ONE,
-        };
-        let mut rm = RowMotion::new(100, true);
-        for _ in 0..100 {
-            rm.begin(true);
-            rm.segs.extend([seg; 3]);
-        }
-        rm.begin(true);
-        rm.seal();
-        rm.room();
-        let (len, at) = (rm.segs.len(), rm.segs.as_ptr());
-        // Every pixel traced again with its three segments, and a quarter of
-        // them with one more: as much garbage as live segments, the most a
-        // row holds before `compact` drops the garbage.
-        for k in 0..100 {
-            let n = if k % 4 == 0 { 4 } else { 3 };
-            rm.retrace(k, |out| {
-                out.extend(std::iter::repeat_n(seg, n));
-                (1, ())
-            });
-        }
-        assert_eq!(rm.segs.len(), len + 325);
-        assert_eq!(rm.segs.as_ptr(), at, "the buffer grew");
-        // An untracked record takes no room.
-        let mut bare = RowMotion::new(100, false);
-        bare.room();
-        assert_eq!(bare.segs.capacity(), 0);
-    }
-}
+mod row_tests;

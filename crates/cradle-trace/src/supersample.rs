@@ -18,29 +18,37 @@ pub(crate) type Sampled = ([u8; 4], Cells);
 /// The pixel being summed: column, sum so far, cells, where its segments start.
 type Open = (usize, Vec3, Cells, usize);
 
+/// What [`Frame::supersampled`] gives: per pixel its result and where its
+/// other samples' segments (in a tracked frame) lie in `segs`. Kept by the
+/// caller from row to row, so the buffers are not made anew for each.
+#[derive(Debug, Default)]
+pub(crate) struct Supersamples {
+    pub(crate) done: Vec<(Sampled, Range<usize>)>,
+    pub(crate) segs: Vec<Seg>,
+}
+
 impl Frame<'_> {
     /// Supersamples the edge pixels `xs` (ascending) of row `y`, whose centre
-    /// samples' linear colours `centre` gives: per pixel of `xs`, in order, its
-    /// result and where its other samples' segments (in a tracked frame) lie in
-    /// the second vector.
+    /// samples' linear colours `centre` gives, into `into` (emptied first): per
+    /// pixel of `xs`, in order, its result and its segments.
     pub(crate) fn supersampled(
         &self,
         y: u32,
         xs: &[usize],
         centre: impl Fn(usize) -> Vec3,
-    ) -> (Vec<(Sampled, Range<usize>)>, Vec<Seg>) {
+        into: &mut Supersamples,
+    ) {
         let others = &self.offsets()[1..];
-        let mut out = Vec::with_capacity(xs.len());
-        // About three segments a sample (the eye's, a reflection's, shadows').
-        let mut segs = Vec::with_capacity(xs.len() * others.len() * 3);
+        let Supersamples { done: out, segs } = into;
+        out.clear();
+        segs.clear();
         let Some(pk) = self.packets(&[(0.5, 0.5)]).filter(|_| !others.is_empty()) else {
             for &x in xs {
                 let (from, mut px) = (segs.len(), [0; 4]);
-                let (cells, _) =
-                    self.put((x as u32, y), &mut px, (Some(centre(x)), others), &mut segs);
+                let (cells, _) = self.put((x as u32, y), &mut px, (Some(centre(x)), others), segs);
                 out.push(((px, cells), from..segs.len()));
             }
-            return (out, segs);
+            return;
         };
         let n = others.len() + 1;
         let finish = |(_, sum, cells, from): Open, to: usize| -> (Sampled, Range<usize>) {
@@ -74,12 +82,11 @@ impl Frame<'_> {
                     o.1 += colors[i];
                     o.2 |= marks[i];
                 }
-                pk.lane_segs(i, &mut segs);
+                pk.lane_segs(i, segs);
             }
         }
         if let Some(done) = open {
             out.push(finish(done, segs.len()));
         }
-        (out, segs)
     }
 }

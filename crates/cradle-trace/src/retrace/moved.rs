@@ -36,8 +36,8 @@ impl Moved {
         rm.meets(self.cells) || !self.spans.row(y).is_empty()
     }
 
-    /// The pixels of row `y`, whose record is `rm` (sealed), that may have
-    /// changed, in order; `None` when no pixel may. A pixel may have changed
+    /// Into `out` (emptied first), the pixels of row `y`, whose record is `rm`
+    /// (sealed), that may have changed, in order; false when no pixel may. A pixel may have changed
     /// when its cells meet the moved ones or it lies in the row's [`Spans`],
     /// and (in a tracked record of a frame without a moved plane) one of its
     /// segments near the moved shapes' box comes within a moved shape whose
@@ -50,24 +50,25 @@ impl Moved {
     /// needlessly is only traced again, so the frame keeps its bytes either
     /// way (the base layer, one centre sample, asks for it; the edge layer's
     /// samples lie anywhere in the pixel and each costs three, so it does not).
-    pub(crate) fn dirty(&self, y: usize, rm: &RowMotion, sure: bool) -> Option<Vec<u32>> {
+    pub(crate) fn dirty(&self, y: usize, rm: &RowMotion, sure: bool, out: &mut Vec<u32>) -> bool {
+        out.clear();
         if !self.reaches(y, rm) {
-            return None;
+            return false;
         }
         #[cfg(target_arch = "x86_64")]
         if let Some(s) = Avx2::detect() {
             // SAFETY: the token proves the CPU has AVX2.
             #[expect(unsafe_code, reason = "the run-time dispatch to the AVX2 build")]
-            return unsafe { self.dirty_avx2(s, y, rm, sure) };
+            return unsafe { self.dirty_avx2(s, (y, rm, sure), out) };
         }
-        self.dirty_with(Portable, y, rm, sure)
+        self.dirty_with(Portable, (y, rm, sure), out)
     }
 
     /// [`Self::dirty`] compiled for AVX2.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
-    fn dirty_avx2(&self, s: Avx2, y: usize, rm: &RowMotion, sure: bool) -> Option<Vec<u32>> {
-        self.dirty_with(s, y, rm, sure)
+    fn dirty_avx2(&self, s: Avx2, at: (usize, &RowMotion, bool), out: &mut Vec<u32>) -> bool {
+        self.dirty_with(s, at, out)
     }
 
     /// [`Self::dirty`] after its row test, in lane build `s`.
@@ -76,7 +77,12 @@ impl Moved {
         reason = "inlined into each build, so the AVX2 one compiles it for AVX2"
     )]
     #[inline(always)]
-    fn dirty_with<S: Simd>(&self, s: S, y: usize, rm: &RowMotion, sure: bool) -> Option<Vec<u32>> {
+    fn dirty_with<S: Simd>(
+        &self,
+        s: S,
+        (y, rm, sure): (usize, &RowMotion, bool),
+        out: &mut Vec<u32>,
+    ) -> bool {
         let n = rm.cells.len();
         let mut room = BitRoom::new();
         let mut hit = room.row(n);
@@ -110,9 +116,8 @@ impl Moved {
             }
         }
         batch.test(s, &self.near, &mut hit);
-        let mut out = Vec::with_capacity(hit.count());
         out.extend(hit.iter().map(|k| k as u32));
-        (!out.is_empty()).then_some(out)
+        !out.is_empty()
     }
 
     /// The candidates among pixels `xs` of `rm` (a block), their segments
