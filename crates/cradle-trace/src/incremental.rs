@@ -5,6 +5,7 @@
 use super::adaptive::Layers;
 use super::camera::CameraRays;
 use super::color::Image;
+use super::geometry::Aabb;
 use super::motion::{Cells, MotionGrid, Near, NearSet};
 use super::render::{Frame, RenderOptions};
 use super::retrace::{Moved, Piece, RowMotion, Spans};
@@ -136,18 +137,22 @@ impl Incremental {
 
     /// Renders `scene` on the current rayon pool and returns the picture.
     pub fn render(&mut self, scene: &Scene) -> &Image {
-        let frame = Frame::new(scene, RenderOptions::FAST, true);
+        // What moved since the last frame, found while the frame is prepared
+        // (from the same camera and grid as the frame's).
+        let last = self.last.as_ref().filter(|l| same_but_motion(l, scene));
+        let (frame, moved) = rayon::join(
+            || Frame::new(scene, RenderOptions::FAST, true),
+            || {
+                let (min, max) = scene.motion_bounds?;
+                let grid = MotionGrid::new(Aabb { min, max });
+                let cam = CameraRays::new(&scene.camera, scene.size.0, scene.size.1);
+                Some(moved(&grid, &cam, last?, scene))
+            },
+        );
         let adaptive = frame.edge();
-        let reuse = scene.motion_bounds.is_some()
-            && self.image.is_some()
-            && adaptive.is_some() == self.layers.is_some()
-            && self
-                .last
-                .as_ref()
-                .is_some_and(|l| same_but_motion(l, scene));
+        let reuse = self.image.is_some() && adaptive.is_some() == self.layers.is_some();
         self.full = !reuse;
-        if let (true, Some(grid), Some(last)) = (reuse, frame.motion, self.last.as_ref()) {
-            let moved = moved(&grid, frame.camera(), last, scene);
+        if let (true, Some(moved)) = (reuse, moved) {
             let img = self.image.as_mut().expect("checked above");
             if let (Some(threshold), Some(layers)) = (adaptive, self.layers.as_mut()) {
                 self.retraced = frame.adaptive_next(threshold, layers, img, &moved);

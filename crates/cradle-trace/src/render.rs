@@ -150,11 +150,6 @@ impl<'a> Frame<'a> {
         self.width
     }
 
-    /// The camera's rays.
-    pub(crate) fn camera(&self) -> &CameraRays {
-        &self.camera
-    }
-
     /// The pixel's sample offsets.
     pub(crate) fn offsets(&self) -> &[(f32, f32)] {
         &self.offsets

@@ -8,6 +8,7 @@ use crate::casters::Casters;
 use crate::geometry::Aabb;
 use crate::scene::Shape;
 use crate::shadow::Footprints;
+use rayon::prelude::*;
 
 impl Prepared<'_> {
     /// Turns shadow culling ([`Footprints`]) on or off (off: every shadow ray
@@ -50,9 +51,11 @@ impl Prepared<'_> {
         // hierarchy rather than by testing every object.
         let boxes: Vec<Aabb> = self.bounded.iter().map(|&(_, b)| b).collect();
         let bvh = (boxes.len() > 32).then(|| Bvh::new(&boxes));
+        // (Object by object over the pool: each takes a list per light and
+        // piece, and a frame waits for them before it traces.)
         scene
             .objects
-            .iter()
+            .par_iter()
             .enumerate()
             .map(|(i, o)| {
                 let bvh = bvh.as_ref().map(|b| (b, &boxes[..]));
