@@ -176,11 +176,22 @@ impl RowMotion {
         // As much room as before: the next frames' segments append without
         // growing it again.
         let mut segs = Vec::with_capacity(self.segs.capacity());
+        // Pixels whose segments follow each other in the old buffer (those not
+        // traced again since the last compaction) are copied as one run.
+        let mut run = 0..0;
         for span in &mut self.span {
-            let start = segs.len() as u32;
-            segs.extend_from_slice(&self.segs[span[0] as usize..span[1] as usize]);
-            *span = [start, segs.len() as u32];
+            let (a, b) = (span[0] as usize, span[1] as usize);
+            if a != run.end {
+                segs.extend_from_slice(&self.segs[run.clone()]);
+                run = a..a;
+            }
+            run.end = b;
+            // Where the pixel's segments land: after the runs copied, and
+            // this one's segments before it.
+            let start = (segs.len() + (a - run.start)) as u32;
+            *span = [start, start + (b - a) as u32];
         }
+        segs.extend_from_slice(&self.segs[run]);
         self.segs = segs;
         self.garbage = 0;
     }

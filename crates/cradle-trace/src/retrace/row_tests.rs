@@ -1,4 +1,4 @@
-//! Tests of a row's motion record: its segment buffer's room.
+//! Tests of a row's motion record: its segment buffer's room and compaction.
 
 use super::{RowMotion, Seg};
 use glam::Vec3;
@@ -34,4 +34,47 @@ fn a_filled_row_takes_as_many_segments_again_without_moving_its_buffer() {
     let mut bare = RowMotion::new(100, false);
     bare.room();
     assert_eq!(bare.segs.capacity(), 0);
+}
+
+#[test]
+fn compaction_keeps_each_pixels_segments_and_drops_the_rest() {
+    // Pixel k's segments are told apart by their start point (k, j, 0).
+    let seg = |k: usize, j: usize| Seg {
+        a: Vec3::new(k as f32, j as f32, 0.0),
+        b: Vec3::ONE,
+    };
+    let mut rm = RowMotion::new(10, true);
+    for k in 0..10 {
+        rm.begin(true);
+        rm.segs.extend((0..1 + k % 3).map(|j| seg(k, j)));
+    }
+    rm.begin(true);
+    rm.seal();
+    // Traced again: pixels 2, 3, 4, 7 and 8 (now with 1, 4, 0, 0 and 1
+    // segments), and pixel 5 cleared; pixels 0, 1, 6 and 9 keep theirs where
+    // they were.
+    let again = [(2, 1), (3, 4), (4, 0), (7, 0), (8, 1)];
+    for &(k, n) in &again {
+        rm.retrace(k, |out| {
+            out.extend((0..n).map(|j| seg(k, 10 + j)));
+            (1, ())
+        });
+    }
+    rm.clear(5);
+    let before = rm.segs.len();
+    rm.compact();
+    let want = |k: usize| -> Vec<Seg> {
+        match again.iter().find(|a| a.0 == k) {
+            Some(&(_, n)) => (0..n).map(|j| seg(k, 10 + j)).collect(),
+            None if k == 5 => Vec::new(),
+            None => (0..1 + k % 3).map(|j| seg(k, j)).collect(),
+        }
+    };
+    for k in 0..10 {
+        assert_eq!(rm.of(k), &want(k)[..], "pixel {k}");
+    }
+    // Garbage: the old 3+1+2+3+2+3 segments of pixels 2, 3, 4, 5, 7 and 8,
+    // more than half of the 19 + 6 appended: compacted to the 11 live.
+    assert_eq!(before, 25);
+    assert_eq!(rm.segs.len(), 11);
 }
