@@ -46,7 +46,7 @@ fn compaction_keeps_each_pixels_segments_and_drops_the_rest() {
     let mut rm = RowMotion::new(10, true);
     for k in 0..10 {
         rm.begin(true);
-        rm.segs.extend((0..1 + k % 3).map(|j| seg(k, j)));
+        rm.segs.extend((0..=k % 3).map(|j| seg(k, j)));
     }
     rm.begin(true);
     rm.seal();
@@ -67,7 +67,7 @@ fn compaction_keeps_each_pixels_segments_and_drops_the_rest() {
         match again.iter().find(|a| a.0 == k) {
             Some(&(_, n)) => (0..n).map(|j| seg(k, 10 + j)).collect(),
             None if k == 5 => Vec::new(),
-            None => (0..1 + k % 3).map(|j| seg(k, j)).collect(),
+            None => (0..=k % 3).map(|j| seg(k, j)).collect(),
         }
     };
     for k in 0..10 {
