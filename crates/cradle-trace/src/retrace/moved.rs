@@ -37,12 +37,12 @@ impl Moved {
     }
 
     /// Into `out` (emptied first), the pixels of row `y`, whose record is `rm`
-    /// (sealed), that may have changed, in order; false when no pixel may. A pixel may have changed
-    /// when its cells meet the moved ones or it lies in the row's [`Spans`],
-    /// and (in a tracked record of a frame without a moved plane) one of its
-    /// segments near the moved shapes' box comes within a moved shape whose
-    /// cells meet its own, or any moved shape for a pixel in the spans
-    /// ([`crate::motion::Near::meets`]). Blocks neither reaches are skipped
+    /// (sealed), that may have changed, in order; false when no pixel may. A
+    /// pixel may have changed when its cells meet the moved ones or it lies in
+    /// the row's [`Spans`], and (in a tracked record of a frame without a
+    /// moved plane) one of its segments near the moved shapes' box comes within
+    /// a moved shape whose cells meet its own, or any moved shape for a pixel
+    /// in the spans ([`crate::motion::Near::meets`]). Blocks neither reaches are skipped
     /// whole; the segments are tested eight at a time ([`Batch`]). With
     /// `sure`, a pixel in the row's sure runs ([`Spans::sure_row`]: its centre
     /// well inside a moved ball's image) is taken without its segments: its
