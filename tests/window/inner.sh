@@ -8,7 +8,11 @@
 set -uo pipefail
 bin="$1"
 work="$(mktemp -d)"
-trap 'kill "$pid" 2>/dev/null; rm -rf "$work"' EXIT
+# One client connected throughout, so that Xvfb does not reset (and refuse the
+# next start of the app) when the app is its last client and exits.
+python3 "$(dirname "$0")/hold_display.py" &
+holder=$!
+trap 'kill "$pid" "$holder" 2>/dev/null; rm -rf "$work"' EXIT
 pass=0; fail=0
 ok() { echo "ok - $1"; pass=$((pass + 1)); }
 bad() { echo "FAIL - $1"; fail=$((fail + 1)); }
