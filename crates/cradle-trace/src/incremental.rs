@@ -80,6 +80,15 @@ fn moved(grid: &MotionGrid, cam: &CameraRays, before: &Scene, after: &Scene) -> 
         .zip(&after.objects)
         .filter(|(a, b)| a.moving && a.shape != b.shape)
         .flat_map(|(a, b)| [&a.shape, &b.shape]);
+    // The moved balls where they were and where they are: a segment well
+    // through one of each is left out (`NearSet::with_balls`), as a shadow ray
+    // blocked before and after.
+    let mut balls = [Vec::new(), Vec::new()];
+    for (i, s) in shapes.clone().enumerate() {
+        if let super::scene::Shape::Sphere { centre, radius } = *s {
+            balls[i % 2].push((centre, radius));
+        }
+    }
     let mut near = Vec::new();
     let mut pieces = Vec::new();
     for s in shapes {
@@ -95,7 +104,8 @@ fn moved(grid: &MotionGrid, cam: &CameraRays, before: &Scene, after: &Scene) -> 
             out.coarse = true;
         }
     }
-    out.near = NearSet::new(near);
+    let [b0, b1] = balls;
+    out.near = NearSet::new(near).with_balls(b0, b1);
     out.spans = Spans::new(cam, after, (!out.coarse).then_some(&pieces[..]));
     out
 }

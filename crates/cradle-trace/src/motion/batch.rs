@@ -22,6 +22,9 @@ use glam::Vec3;
 /// Segments per batch: the lanes.
 const N: usize = 8;
 
+/// Three lanes of numbers: x, y and z.
+type L3<S> = [<S as Simd>::F; 3];
+
 /// Relative slack of the distance bounds (rounding of the f32 products).
 const SLACK: f32 = 1.0001;
 
@@ -72,6 +75,8 @@ impl Batch {
         let valid = ((1u16 << self.n) - 1) as u8;
         let gt = |a, b| S::lt(b, a);
         let tiny = s.splat(1e-12);
+        // Worked out when first needed: the lanes left out (`NearSet::with_balls`).
+        let mut out: Option<u8> = None;
         for (j, (shape_cells, near)) in set.nears().iter().enumerate() {
             let k = set.lanes(j);
             let inside = S::le(s.splat(k.lo.x), hi[0])
@@ -110,6 +115,12 @@ impl Batch {
                 gt(apart * apart, r2 * n2 * s.splat(SLACK)) & gt(n2, tiny)
             };
             let mut maybe = inside & !S::bits(far);
+            if maybe != 0 {
+                if out.is_none() {
+                    out = Some(left_out(s, set, (&p, &q, &d, d2)));
+                }
+                maybe &= !out.unwrap_or(0);
+            }
             while maybe != 0 {
                 let i = maybe.trailing_zeros() as usize;
                 maybe &= maybe - 1;
@@ -126,6 +137,52 @@ impl Batch {
         }
         self.n = 0;
     }
+}
+
+/// The lanes whose segments (from `p` to `q`, `d = q - p`, `d2 = |d|^2`)
+/// pass through a moved ball where it was and one where it is
+/// (`NearSet::with_balls`): each time the nearest point of the segment to the
+/// centre within it and nearer than the radius less [`super::Near::PAD`] (with
+/// the rounding's slack), both ends farther than the radius and the pad.
+#[inline(always)]
+fn left_out<S: Simd>(s: S, set: &NearSet, (p, q, d, d2): (&L3<S>, &L3<S>, &L3<S>, S::F)) -> u8 {
+    let [before, after] = set.balls();
+    if before.is_empty() || after.is_empty() {
+        return 0;
+    }
+    let pad = super::Near::PAD;
+    // (No closure: one left as a call is not compiled for AVX2.)
+    let mut through = [0u8; 2];
+    for (side, balls) in [before, after].into_iter().enumerate() {
+        for &(c, r) in balls {
+            let (inner, outer) = (r - pad, r + pad);
+            let w = [
+                s.splat(c.x) - p[0],
+                s.splat(c.y) - p[1],
+                s.splat(c.z) - p[2],
+            ];
+            let v = [
+                s.splat(c.x) - q[0],
+                s.splat(c.y) - q[1],
+                s.splat(c.z) - q[2],
+            ];
+            let wd = w[0] * d[0] + w[1] * d[1] + w[2] * d[2];
+            let cx = w[1] * d[2] - w[2] * d[1];
+            let cy = w[2] * d[0] - w[0] * d[2];
+            let cz = w[0] * d[1] - w[1] * d[0];
+            let c2 = cx * cx + cy * cy + cz * cz;
+            let w2 = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
+            let v2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+            let out2 = s.splat(outer * outer * SLACK);
+            let deep = S::lt(c2 * s.splat(SLACK), s.splat(inner * inner) * d2)
+                & S::lt(s.splat(0.0), wd)
+                & S::lt(wd, d2)
+                & S::lt(out2, w2)
+                & S::lt(out2, v2);
+            through[side] |= S::bits(deep);
+        }
+    }
+    through[0] & through[1]
 }
 
 /// A moved shape's numbers for [`Batch::test`]: its box, a ball's centre or a

@@ -146,6 +146,8 @@ pub struct NearSet {
     nears: Vec<(Cells, Near)>,
     /// Each shape's numbers for the batch test.
     lanes: Vec<Lanes>,
+    /// The moved balls where they were and where they are: centre and radius.
+    balls: [Vec<(Vec3, f32)>; 2],
 }
 
 impl NearSet {
@@ -169,7 +171,32 @@ impl NearSet {
                 }
             })
             .collect();
-        Self { nears, lanes }
+        Self {
+            nears,
+            lanes,
+            balls: Default::default(),
+        }
+    }
+
+    /// The set with the moved balls where they were (`before`) and where they
+    /// are (`after`): [`Self::meets`] then leaves out a segment that passes
+    /// through one of each, each time well inside it (deeper than
+    /// [`Near::PAD`]) with both its ends well outside. Were it a shadow ray's,
+    /// that ray was blocked and still is, so it gives what it gave; and it
+    /// cannot be the segment of a ray that ends at its nearest hit, which never
+    /// passes through a ball (where it was). So a pixel need not be traced
+    /// again for it.
+    #[must_use]
+    pub fn with_balls(mut self, before: Vec<(Vec3, f32)>, after: Vec<(Vec3, f32)>) -> Self {
+        self.balls = [before, after];
+        self
+    }
+
+    /// The moved balls where they were (side 0) and where they are (side 1),
+    /// for [`super::batch::Batch::test`]: a segment that passes well inside one
+    /// of each is not taken.
+    pub(crate) fn balls(&self) -> &[Vec<(Vec3, f32)>; 2] {
+        &self.balls
     }
 
     /// The shapes, each with its cells.
@@ -183,7 +210,8 @@ impl NearSet {
     }
 
     /// Whether segment `s` comes within one of the shapes whose cells meet
-    /// `cells`: what [`Near::meets`] says of some such shape, by the batch test
+    /// `cells` (and is not left out, [`Self::with_balls`]): what [`Near::meets`]
+    /// says of some such shape, by the batch test
     /// of this one segment (`super::batch`), in the AVX2 build where the CPU has
     /// AVX2, else the portable one.
     #[must_use]
