@@ -80,20 +80,18 @@ fn moved(grid: &MotionGrid, cam: &CameraRays, before: &Scene, after: &Scene) -> 
         .zip(&after.objects)
         .filter(|(a, b)| a.moving && a.shape != b.shape)
         .flat_map(|(a, b)| [&a.shape, &b.shape]);
-    // The moved balls where they were and where they are: a segment well
-    // through one of each is left out (`NearSet::with_balls`), as a shadow ray
-    // blocked before and after.
+    let mut near = Vec::new();
+    let mut pieces = Vec::new();
+    // The moved balls where they were (even `i`) and where they are (odd): a
+    // segment well through one of each is left out (`NearSet::with_balls`), as
+    // a shadow ray blocked before and after.
     let mut balls = [Vec::new(), Vec::new()];
-    for (i, s) in shapes.clone().enumerate() {
+    for (i, s) in shapes.enumerate() {
+        let cells = shape_cells(grid, s);
+        out.cells |= cells;
         if let super::scene::Shape::Sphere { centre, radius } = *s {
             balls[i % 2].push((centre, radius));
         }
-    }
-    let mut near = Vec::new();
-    let mut pieces = Vec::new();
-    for s in shapes {
-        let cells = shape_cells(grid, s);
-        out.cells |= cells;
         if let Some(n) = Near::of(s) {
             (out.lo, out.hi) = (out.lo.min(n.lo()), out.hi.max(n.hi()));
             near.push((cells, n));
