@@ -211,9 +211,9 @@ impl NearSet {
 
     /// Whether segment `s` comes within one of the shapes whose cells meet
     /// `cells` (and is not left out, [`Self::with_balls`]): what [`Near::meets`]
-    /// says of some such shape, by the batch test
-    /// of this one segment (`super::batch`), in the AVX2 build where the CPU has
-    /// AVX2, else the portable one.
+    /// says of some such shape, by the batch test of this one segment
+    /// (`super::batch`), in the AVX2 build where the CPU has AVX2, else the
+    /// portable one.
     #[must_use]
     pub fn meets(&self, s: &Seg, cells: Cells) -> bool {
         #[cfg(target_arch = "x86_64")]

@@ -42,7 +42,9 @@ impl Moved {
     /// the row's [`Spans`], and (in a tracked record of a frame without a
     /// moved plane) one of its segments near the moved shapes' box comes within
     /// a moved shape whose cells meet its own, or any moved shape for a pixel
-    /// in the spans ([`crate::motion::Near::meets`]). Blocks neither reaches are skipped
+    /// in the spans ([`crate::motion::Near::meets`]), unless it passes well
+    /// through a moved ball where it was and where it is (a shadow ray blocked
+    /// both times, [`NearSet::with_balls`]). Blocks neither reaches are skipped
     /// whole; the segments are tested eight at a time ([`Batch`]). With
     /// `sure`, a pixel in the row's sure runs ([`Spans::sure_row`]: its centre
     /// well inside a moved ball's image) is taken without its segments: its
