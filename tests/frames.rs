@@ -105,31 +105,60 @@ fn tile_culling_and_the_bvh_leave_every_byte_as_the_full_render_makes_it() {
 
 /// Renders 300 frames (5 s at 60 fps) of `config`'s swing incrementally and
 /// asserts each equals the full reference render byte for byte, only the first
-/// being traced in full; returns the last frame's share of re-traced pixels.
-fn incremental_swing_equals_full(config: &Config, what: &str) -> f64 {
+/// being traced in full; and that a copy kept up to date from each frame's
+/// `changes` alone (as the window's framebuffer is) equals it too. Returns the
+/// last frame's share of re-traced pixels and the mean share of the pixels the
+/// frames after the first name as changed.
+fn incremental_swing_equals_full(config: &Config, what: &str) -> (f64, f64) {
     use newtons_cradle::trace::{Incremental, RenderOptions, render_serial_with};
     let mut world = CradleWorld::new(config);
     let mut inc = Incremental::new();
+    let (mut copy, mut copied) = (Vec::new(), None);
+    let mut named = 0.0;
     for n in 0..300 {
         world.show_at(f64::from(n) / 60.0);
         let scene = world.scene();
         let full = render_serial_with(scene, RenderOptions::FULL);
-        let frame = inc.render(scene);
-        assert!(*frame == full, "{what}: frame {n} differs");
+        let frame = inc.render(scene).clone();
+        assert!(frame == full, "{what}: frame {n} differs");
         assert_eq!(
             inc.last_was_full(),
             n == 0,
             "{what}: only the first frame is traced in full"
         );
+        let changes = inc.changes().expect("a frame was rendered");
+        assert_ne!(
+            Some(changes.id),
+            copied,
+            "{what}: frame {n} has a new number"
+        );
+        assert_eq!(changes.since.is_none(), n == 0, "{what}: frame {n}");
+        if changes.since.is_some() && changes.since == copied {
+            let stride = frame.width as usize * 4;
+            let mut pixels = 0;
+            for (y, &[a, b]) in changes.rows.iter().enumerate() {
+                let span = y * stride + a as usize * 4..y * stride + b as usize * 4;
+                copy[span.clone()].copy_from_slice(&frame.rgba[span]);
+                pixels += b - a;
+            }
+            named += f64::from(pixels) / f64::from(frame.width * frame.height) / 299.0;
+        } else {
+            copy.clone_from(&frame.rgba);
+        }
+        copied = Some(changes.id);
+        assert!(
+            copy == frame.rgba,
+            "{what}: frame {n}'s changes miss a byte"
+        );
     }
-    inc.dynamic_share()
+    (inc.dynamic_share(), named)
 }
 
 #[test]
 fn incremental_frames_equal_full_renders_over_300_frames_of_a_swing() {
     for (balls, lift, gap) in [(5, 1, 0.0), (5, 2, 0.0), (20, 3, 0.0), (5, 1, 0.002)] {
         let config = small_cradle((160, 80), balls, lift, gap);
-        let share = incremental_swing_equals_full(
+        let (share, _) = incremental_swing_equals_full(
             &config,
             &format!("{balls} balls, {lift} lifted, gap {gap}"),
         );
@@ -150,11 +179,17 @@ fn anti_aliased_incremental_frames_equal_full_renders_over_300_frames() {
         config.render.samples = samples;
         config.render.adaptive = true;
         config.render.adaptive_threshold = threshold;
-        let share =
+        let (share, named) =
             incremental_swing_equals_full(&config, &format!("{balls} balls, {samples} samples"));
         assert!(
             share > 0.0 && share < 0.5,
             "{balls} balls: re-traces {share:.2}"
+        );
+        // The changes name a part of the picture, each row's from its first
+        // changed pixel to its last (wider than the pixels traced again).
+        assert!(
+            named > share && named < 0.6,
+            "{balls} balls: names {named:.2} of the pixels as changed"
         );
     }
 }

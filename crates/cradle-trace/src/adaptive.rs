@@ -134,13 +134,14 @@ impl Frame<'_> {
         (img, layers)
     }
 
-    /// The next adaptive frame into `img`, from `layers` after `moved`: returns
+    /// The next adaptive frame into `img`, from `layers` after `moved`, noting
+    /// per row in `written` the pixels whose bytes it may have changed: returns
     /// how many pixels it traced (base and supersampled).
     pub(crate) fn adaptive_next(
         &self,
         threshold: f32,
         layers: &mut Layers,
-        img: &mut Image,
+        (img, written): (&mut Image, &mut [[u32; 2]]),
         moved: &Moved,
     ) -> usize {
         let (w, h) = (self.width() as usize, self.height() as usize);
@@ -206,8 +207,9 @@ impl Frame<'_> {
             .rgba
             .par_chunks_exact_mut(stride)
             .zip(layers.edge_rows.par_iter_mut())
+            .zip(written.par_iter_mut())
             .enumerate()
-            .map_init(Scratch::default, |scratch, (y, (row, rm))| {
+            .map_init(Scratch::default, |scratch, (y, ((row, rm), written))| {
                 let span = y * w..(y + 1) * w;
                 let base = Base {
                     bytes: &base[y * stride..(y + 1) * stride],
@@ -216,7 +218,9 @@ impl Frame<'_> {
                     changed: &xs[y],
                 };
                 let at = (y as u32, row, rm);
-                self.final_row(at, &base, (&edge[span], &flips[y]), moved, scratch)
+                let (n, xs) = self.final_row(at, &base, (&edge[span], &flips[y]), moved, scratch);
+                *written = xs;
+                n
             })
             .sum::<usize>();
         traced
@@ -225,6 +229,8 @@ impl Frame<'_> {
     /// Row `y` of the picture (`row`, with its edge record `rm`): base colours
     /// where not an edge, samples kept or traced again where an edge. `is`: the
     /// row's edge flags; `flips`: the pixels whose flag this frame flipped.
+    /// Returns how many pixels it supersampled, and the pixels `x0..x1` whose
+    /// bytes it may have changed (`[0, 0]`: none).
     fn final_row(
         &self,
         (y, row, rm): (u32, &mut [u8], &mut RowMotion),
@@ -232,7 +238,7 @@ impl Frame<'_> {
         (is, flips): (&[bool], &[u32]),
         moved: &Moved,
         scratch: &mut Scratch,
-    ) -> usize {
+    ) -> (usize, [u32; 2]) {
         let w = is.len();
         let Base {
             bytes,
@@ -245,8 +251,14 @@ impl Frame<'_> {
             && changed.is_empty()
             && !moved.reaches(y as usize, rm)
         {
-            return 0;
+            return (0, [0, 0]);
         }
+        // The pixels written: those whose base bytes changed (not in order),
+        // whose flag flipped, and the edges supersampled again.
+        let mut span = changed
+            .iter()
+            .chain(flips)
+            .fold((u32::MAX, 0), |(a, b), &x| (a.min(x), b.max(x + 1)));
         let show_base = |row: &mut [u8], x: usize| {
             row[x * 4..x * 4 + 4].copy_from_slice(&bytes[x * 4..x * 4 + 4]);
         };
@@ -280,10 +292,14 @@ impl Frame<'_> {
             redo.extend(touched.iter().map(|&x| x as usize).filter(|&x| is[x]));
         }
         redo.extend(dirty.iter().map(|&x| x as usize).filter(|&x| is[x]));
+        let written = |(a, b): (u32, u32)| if a < b { [a, b] } else { [0, 0] };
         if redo.is_empty() && flips.is_empty() {
-            return 0;
+            return (0, written(span));
         }
         ascending(w, redo.iter().copied(), sorted);
+        if let (Some(&a), Some(&b)) = (sorted.first(), sorted.last()) {
+            span = (span.0.min(a as u32), span.1.max(b as u32 + 1));
+        }
         self.supersampled(y, sorted, |x| lin[x], samples);
         for (&x, ((bytes, cells), span)) in sorted.iter().zip(&samples.done) {
             row[x * 4..x * 4 + 4].copy_from_slice(bytes);
@@ -298,6 +314,6 @@ impl Frame<'_> {
         // those that stopped being edges (each ascending).
         rm.reseal(sorted.iter().copied());
         rm.reseal(flips.iter().map(|&x| x as usize).filter(|&x| !is[x]));
-        traced
+        (traced, written(span))
     }
 }

@@ -12,6 +12,26 @@ use super::retrace::{Moved, Piece, RowMotion, Spans};
 use super::scene::Scene;
 use glam::Vec3;
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicU64, Ordering};
+
+/// The next picture's number, over every renderer of the process, so that a
+/// number names one picture ([`Changes`]).
+static NEXT_ID: AtomicU64 = AtomicU64::new(1);
+
+/// Which bytes the last frame may have changed, for a consumer that keeps a copy
+/// of the picture (the window's framebuffer): copying `rows` from the picture
+/// numbered `since` gives the picture numbered `id`.
+#[derive(Debug, Clone, Copy)]
+pub struct Changes<'a> {
+    /// The picture's number (unique in the process).
+    pub id: u64,
+    /// The number of the picture the frame started from; `None` after a full
+    /// frame (every pixel may have changed).
+    pub since: Option<u64>,
+    /// Per row, the pixels `x0..x1` that may have changed (`[0, 0]`: none);
+    /// every other byte equals picture `since`'s.
+    pub rows: &'a [[u32; 2]],
+}
 
 /// Whether `a` and `b` differ at most in the shapes of their moving objects: then
 /// a pixel whose rays met no moving object keeps its bytes. Every field is named,
@@ -63,6 +83,11 @@ pub struct Incremental {
     /// With adaptive anti-aliasing: the layers its frames keep (then `rows` is
     /// unused).
     layers: Option<Layers>,
+    /// The picture's number and the one it started from ([`Changes`]).
+    id: u64,
+    since: Option<u64>,
+    /// Per row, the pixels the last frame may have changed ([`Changes::rows`]).
+    written: Vec<[u32; 2]>,
 }
 
 /// The objects that moved from `before` to `after` (same objects in the same
@@ -160,22 +185,32 @@ impl Incremental {
         let adaptive = frame.edge();
         let reuse = self.image.is_some() && adaptive.is_some() == self.layers.is_some();
         self.full = !reuse;
+        let id = NEXT_ID.fetch_add(1, Ordering::Relaxed);
+        self.since = None;
         if let (true, Some(moved)) = (reuse, moved) {
             let img = self.image.as_mut().expect("checked above");
+            self.written.resize(img.height as usize, [0, 0]);
             if let (Some(threshold), Some(layers)) = (adaptive, self.layers.as_mut()) {
-                self.retraced = frame.adaptive_next(threshold, layers, img, &moved);
+                let out = (img, &mut self.written[..]);
+                self.retraced = frame.adaptive_next(threshold, layers, out, &moved);
             } else {
-                let stride = img.width as usize * 4;
+                let (stride, w) = (img.width as usize * 4, img.width);
                 self.retraced = img
                     .rgba
                     .par_chunks_exact_mut(stride)
                     .zip(self.rows.par_iter_mut())
+                    .zip(self.written.par_iter_mut())
                     .enumerate()
-                    .map(|(y, (row, rm))| {
-                        frame.retrace_row(y as u32, row, rm, (&moved, frame.offsets()), None)
+                    .map(|(y, ((row, rm), written))| {
+                        let at = (&moved, frame.offsets());
+                        let n = frame.retrace_row(y as u32, row, rm, at, None);
+                        // A traced row may have changed anywhere in its runs.
+                        *written = if n > 0 { [0, w] } else { [0, 0] };
+                        n
                     })
                     .sum();
             }
+            self.since = Some(self.id);
         } else {
             let (img, rows, layers) = if let Some(threshold) = adaptive {
                 let (img, layers) = frame.adaptive_full(threshold);
@@ -190,8 +225,24 @@ impl Incremental {
             self.image = Some(img);
             self.full = true;
         }
+        self.id = id;
         self.last = Some(scene.clone());
         self.image.as_ref().expect("rendered above")
+    }
+
+    /// Which bytes the last frame may have changed (`None` before the first).
+    #[must_use]
+    pub fn changes(&self) -> Option<Changes<'_>> {
+        self.image.as_ref()?;
+        Some(Changes {
+            id: self.id,
+            since: self.since,
+            rows: if self.since.is_some() {
+                &self.written
+            } else {
+                &[]
+            },
+        })
     }
 
     /// The last picture rendered.

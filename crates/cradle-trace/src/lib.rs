@@ -37,7 +37,7 @@ pub mod tiles;
 mod wide;
 
 pub use color::{Image, srgb8};
-pub use incremental::Incremental;
+pub use incremental::{Changes, Incremental};
 pub use prepared::Prepared;
 pub use render::{RenderOptions, pool, render, render_serial, render_serial_with};
 pub use scene::{Camera, Light, Material, Object, Scene, Shape};
