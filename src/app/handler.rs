@@ -160,10 +160,10 @@ impl ApplicationHandler<UserEvent> for App {
                     surface.prepare_panel(&mut self.session);
                 }
                 let lines = self.session.hud_lines();
-                let ready = surface.upload(self.session.image(), &lines);
+                surface.upload(self.session.image(), self.session.changes(), &lines);
                 // The next frame traces while this one is drawn.
                 self.session.launch();
-                if ready && let Err(e) = surface.draw(panel) {
+                if let Err(e) = surface.draw(panel) {
                     self.fail(event_loop, e);
                 }
             }

@@ -66,8 +66,9 @@ impl Canvas<'_> {
     }
 
     /// Draws lines of text in a shaded box at the top-left, wrapped at the frame's
-    /// width (a long config error keeps its allowed range); returns the box height.
-    pub fn panel(&mut self, y: usize, lines: &[(String, [u8; 3])]) -> usize {
+    /// width (a long config error keeps its allowed range); returns the box's
+    /// width and height.
+    pub fn panel(&mut self, y: usize, lines: &[(String, [u8; 3])]) -> (usize, usize) {
         let lines = wrap(lines, (self.width.saturating_sub(16) / (8 * SCALE)).max(8));
         let longest = lines
             .iter()
@@ -79,7 +80,7 @@ impl Canvas<'_> {
         for (i, (line, color)) in lines.iter().enumerate() {
             self.text(8, y + 4 + i * LINE, line, *color);
         }
-        h
+        (w, h)
     }
 }
 

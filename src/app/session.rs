@@ -10,7 +10,7 @@ use super::orbit::Orbit;
 use crate::cli::{Common, InputError};
 use crate::config::{Config, ConfigSource, MAX_BALLS};
 use crate::scene::CradleWorld;
-use crate::trace::{self, Image};
+use crate::trace::{self, Changes, Image};
 use std::time::Instant;
 
 /// Longest simulated step of one frame (s): after a stall the swing continues
@@ -361,6 +361,12 @@ impl Session {
     #[must_use]
     pub fn image(&self) -> Option<&Image> {
         self.tracer.image()
+    }
+
+    /// Which pixels the last picture's frame changed.
+    #[must_use]
+    pub fn changes(&self) -> Option<Changes<'_>> {
+        self.tracer.changes()
     }
 
     /// Simulated time (s) of the last frame.

@@ -20,7 +20,7 @@ use super::WindowError;
 use super::hud::Canvas;
 use super::panel::Panel;
 use super::session::{HudLine, Session};
-use crate::trace::Image;
+use crate::trace::{Changes, Image};
 use pixels::wgpu::TextureFormat;
 use pixels::{Pixels, PixelsBuilder, SurfaceTexture};
 use std::borrow::Cow;
@@ -34,7 +34,9 @@ use winit::window::Window;
 const RESIZE_SETTLE: Duration = Duration::from_millis(150);
 
 mod formats;
+mod shown;
 use formats::{copies, plain_of, put_bgra, scaling, texture_for};
+use shown::Shown;
 
 /// The window and its framebuffer.
 pub struct Surface {
@@ -50,6 +52,8 @@ pub struct Surface {
     resizing: Option<Instant>,
     /// The framebuffer holds BGRA bytes (for a `Bgra8Unorm` texture).
     bgra: bool,
+    /// Which picture the framebuffer holds, and the HUD over it.
+    shown: Shown,
 }
 
 impl Surface {
@@ -102,6 +106,7 @@ impl Surface {
             occluded: false,
             resizing: None,
             bgra,
+            shown: Shown::default(),
         })
     }
 
@@ -146,6 +151,7 @@ impl Surface {
     /// # Errors
     /// The GPU refused the texture, as text for the HUD.
     pub fn resize_buffer(&mut self, width: u32, height: u32) -> Result<(), String> {
+        self.shown.forget();
         self.pixels
             .set_scaling_mode(scaling((width, height), self.size));
         self.pixels
@@ -206,10 +212,39 @@ impl Surface {
         None
     }
 
-    /// Puts `image` with `lines` of HUD over it in the framebuffer, for
-    /// [`Self::draw`]: false when there is nothing to draw on (hidden, resizing).
-    pub fn upload(&mut self, image: Option<&Image>, lines: &[HudLine]) -> bool {
-        // Re-check the size right before rendering (see the module docs).
+    /// Puts `image` (whose frame's `changes` say which pixels it changed, so
+    /// that only those are copied) with `lines` of HUD over it in the
+    /// framebuffer, for [`Self::draw`].
+    pub fn upload(
+        &mut self,
+        image: Option<&Image>,
+        changes: Option<Changes<'_>>,
+        lines: &[HudLine],
+    ) {
+        let Some(img) = image else {
+            return;
+        };
+        let frame = self.pixels.frame_mut();
+        if frame.len() != img.rgba.len() {
+            self.shown.forget();
+            return;
+        }
+        self.shown.put(frame, img, changes, self.bgra);
+        if !lines.is_empty() {
+            let mut canvas = Canvas {
+                rgba: frame,
+                width: img.width as usize,
+                height: img.height as usize,
+                bgra: self.bgra,
+            };
+            self.shown.hud(canvas.panel(0, lines));
+        }
+    }
+
+    /// Whether there is something to draw on (not hidden, not resizing), after
+    /// checking the window's size once more (see the module docs; a round trip
+    /// to the X server, so it is done while the next frame traces).
+    fn drawable(&mut self) -> bool {
         let size = self.window.inner_size();
         if size.width == 0 || size.height == 0 || self.occluded || self.resizing.is_some() {
             return false;
@@ -221,34 +256,18 @@ impl Surface {
             }
             self.size = (size.width, size.height);
         }
-        if let Some(img) = image {
-            let frame = self.pixels.frame_mut();
-            if frame.len() == img.rgba.len() {
-                if self.bgra {
-                    put_bgra(frame, &img.rgba);
-                } else {
-                    frame.copy_from_slice(&img.rgba);
-                }
-            }
-            if !lines.is_empty() {
-                let mut canvas = Canvas {
-                    rgba: frame,
-                    width: img.width as usize,
-                    height: img.height as usize,
-                    bgra: self.bgra,
-                };
-                canvas.panel(0, lines);
-            }
-        }
         true
     }
 
     /// Shows the framebuffer (after [`Self::upload`]), with the control panel
-    /// when `panel` (prepared just before).
+    /// when `panel` (prepared just before); nothing while hidden or resizing.
     ///
     /// # Errors
     /// Presenting failed for a reason other than a size change.
     pub fn draw(&mut self, panel: bool) -> anyhow::Result<()> {
+        if !self.drawable() {
+            return Ok(());
+        }
         let ui = &mut self.panel;
         let c = self.pixels.context();
         let (t, size) = (c.texture_extent, self.size);

@@ -4,7 +4,7 @@
 //! the compositor's work) and tracing share the CPUs instead of taking turns.
 //! Window-free.
 
-use crate::trace::{Image, Incremental, Scene};
+use crate::trace::{Changes, Image, Incremental, Scene};
 use std::sync::mpsc;
 use std::time::Instant;
 
@@ -109,6 +109,13 @@ impl Tracer {
     #[must_use]
     pub fn image(&self) -> Option<&Image> {
         self.home.as_ref()?.image()
+    }
+
+    /// Which pixels the frame of [`Self::image`] changed (`None` when it is
+    /// `None`).
+    #[must_use]
+    pub fn changes(&self) -> Option<Changes<'_>> {
+        self.home.as_ref()?.changes()
     }
 }
 
