@@ -213,6 +213,7 @@ impl Tiles {
     /// it is asked ([`clear_lights`]); threads that find them at once store the
     /// same bits.
     #[must_use]
+    #[inline]
     pub fn shadow_clear(
         &self,
         p: &Prepared<'_>,
@@ -226,11 +227,19 @@ impl Tiles {
         let slot = &c.bits[self.tile(x, y)];
         let mut bits = slot.load(Ordering::Relaxed);
         if bits & FOUND == 0 {
-            let (col, row) = (x / TILE, y / TILE);
-            bits = FOUND | u64::from(clear_lights(p, c, &self.cam, self.size, (col, row)));
+            bits = self.find_clear(p, c, (x, y));
             slot.store(bits, Ordering::Relaxed);
         }
         light < 32 && bits & (1 << light) != 0
+    }
+
+    /// [`Self::shadow_clear`]'s bits of the tile of pixel `(x, y)`, the first
+    /// time they are asked (out of line: the asking is the hot path).
+    #[cold]
+    #[inline(never)]
+    fn find_clear(&self, p: &Prepared<'_>, c: &Clear, (x, y): (u32, u32)) -> u64 {
+        let tile = (x / TILE, y / TILE);
+        FOUND | u64::from(clear_lights(p, c, &self.cam, self.size, tile))
     }
 
     /// The candidates of pixel `(x, y)`.
