@@ -65,6 +65,42 @@ fn casters(
     }
 }
 
+/// The boxes of a sphere or cylinder's pieces ([`Casters`]): a cylinder cut
+/// along its axis into pieces about four radii long (at most 16), each box
+/// holding its part of the shape and overlapping its neighbours' by a margin
+/// far beyond the rounding of a piece lookup (and beyond the 2e-5 m that
+/// shadow rays start off the caps); a sphere, or a plane, is one piece (its
+/// box; none for a plane).
+pub(crate) fn piece_boxes(shape: &Shape) -> Vec<Aabb> {
+    let (a, b, radius) = match *shape {
+        Shape::Plane { .. } => return Vec::new(),
+        Shape::Sphere { centre, radius } => (centre, centre, radius),
+        Shape::Cylinder { a, b, radius } => (a, b, radius),
+    };
+    let len = (b - a).length();
+    let pieces = if len > 0.0 {
+        ((len / (4.0 * radius)).ceil() as usize).clamp(1, 16)
+    } else {
+        1
+    };
+    if pieces == 1 {
+        return bounds(shape).into_iter().collect();
+    }
+    let u = (b - a) / len;
+    let margin = 1e-4 + 1e-4 * len;
+    let step = len / pieces as f32;
+    (0..pieces)
+        .filter_map(|k| {
+            let (s0, s1) = (k as f32 * step - margin, (k + 1) as f32 * step + margin);
+            bounds(&Shape::Cylinder {
+                a: a + u * s0,
+                b: a + u * s1,
+                radius: radius + margin,
+            })
+        })
+        .collect()
+}
+
 /// The casters of one object's shadow rays, per light, per piece of its length:
 /// a cylinder is cut along its axis into pieces about four radii long (at most
 /// 16), so that a shadow ray from a point of a long rod tests only what can lie
@@ -105,36 +141,15 @@ impl Casters {
         bounded: &[(usize, Aabb)],
         bvh: Option<(&Bvh, &[Aabb])>,
     ) -> Option<Self> {
-        let (a, b, radius) = match *shape {
+        let (a, b) = match *shape {
             Shape::Plane { .. } => return None,
-            Shape::Sphere { centre, radius } => (centre, centre, radius),
-            Shape::Cylinder { a, b, radius } => (a, b, radius),
+            Shape::Sphere { centre, .. } => (centre, centre),
+            Shape::Cylinder { a, b, .. } => (a, b),
         };
         let len = (b - a).length();
-        let pieces = if len > 0.0 {
-            ((len / (4.0 * radius)).ceil() as usize).clamp(1, 16)
-        } else {
-            1
-        };
+        let boxes = piece_boxes(shape);
+        let pieces = boxes.len();
         let u = if len > 0.0 { (b - a) / len } else { Vec3::ZERO };
-        // Each piece's box holds its part of the shape, and overlaps its neighbours'
-        // by a margin far beyond the rounding of the piece lookup (and beyond the
-        // 2e-5 m that shadow rays start off the caps).
-        let margin = 1e-4 + 1e-4 * len;
-        let piece_box = |k: usize| -> Aabb {
-            if pieces == 1 {
-                return bounds(shape).expect("spheres and cylinders are bounded");
-            }
-            let step = len / pieces as f32;
-            let (s0, s1) = (k as f32 * step - margin, (k + 1) as f32 * step + margin);
-            bounds(&Shape::Cylinder {
-                a: a + u * s0,
-                b: a + u * s1,
-                radius: radius + margin,
-            })
-            .expect("cylinders are bounded")
-        };
-        let boxes: Vec<Aabb> = (0..pieces).map(piece_box).collect();
         let mut chunks = Vec::new();
         let mut ranges = Vec::with_capacity(lights.len() * pieces);
         let mut found = Vec::new();

@@ -5,7 +5,10 @@
 //! hull of its eight projected corners (a directional light projects in parallel).
 //! A shadow ray from a point of the plane to the light runs along the line that
 //! projects onto that point, so only objects whose projected rectangle holds the
-//! point can block it. The rectangles are binned in a grid over the plane; a query
+//! point can block it. A rod goes in by the rectangles of its pieces' boxes
+//! (`casters::piece_boxes`), whose union holds it: a slanted string or a post
+//! shadows a thin diagonal, which its whole box's rectangle would cover many
+//! times over. The rectangles are binned in a grid over the plane; a query
 //! looks up its cell. The answer is a yes/no of "anything in the way", so testing
 //! a superset of the blockers in any order gives the same bits as testing them all.
 
@@ -80,6 +83,9 @@ pub struct Footprints {
 impl Footprints {
     /// The footprints on the plane through `origin` with unit `normal` of the
     /// bounded objects `bounded` (index, box, in query order) lit by `light`.
+    /// `pieces` gives an object's pieces' boxes (empty: its box whole), which
+    /// bin it only in the cells the pieces' rectangles reach: a slanted rod's
+    /// footprint is a thin diagonal, its box's rectangle a wide one.
     /// `None` for ambient light, or a light on the other side of the plane (its
     /// shadow rays from the lit side never start).
     #[must_use]
@@ -88,6 +94,7 @@ impl Footprints {
         normal: Vec3,
         light: &Light,
         bounded: &[(usize, Aabb)],
+        pieces: impl Fn(usize) -> Vec<Aabb>,
     ) -> Option<Self> {
         let source = match *light {
             Light::Ambient { .. } => return None,
@@ -119,19 +126,23 @@ impl Footprints {
             items: Vec::new(),
             always: Vec::new(),
         };
-        let mut rects = Vec::new();
+        // Per object, its pieces' rectangles (or its box's, where a piece's
+        // corner does not project).
+        let mut rects: Vec<(usize, Vec<(Vec2, Vec2)>)> = Vec::new();
         for &(i, b) in bounded {
-            match fp.rect(&b) {
-                Some(r) => rects.push((i, r)),
-                None => fp.always.push(i),
-            }
+            let Some(whole) = fp.rect(&b) else {
+                fp.always.push(i);
+                continue;
+            };
+            let parts: Option<Vec<_>> = pieces(i).iter().map(|p| fp.rect(p)).collect();
+            rects.push((i, parts.filter(|p| !p.is_empty()).unwrap_or(vec![whole])));
         }
         if rects.is_empty() {
             return Some(fp);
         }
-        let (lo, hi) = rects.iter().fold(
+        let (lo, hi) = rects.iter().flat_map(|(_, r)| r).fold(
             (Vec2::splat(f32::INFINITY), Vec2::splat(f32::NEG_INFINITY)),
-            |(lo, hi), (_, (a, b))| (lo.min(*a), hi.max(*b)),
+            |(lo, hi), (a, b)| (lo.min(*a), hi.max(*b)),
         );
         // About four cells per object along each axis, at most 256.
         let per_axis = ((rects.len() as f32).sqrt() * 8.0).clamp(8.0, 256.0) as usize;
@@ -140,35 +151,47 @@ impl Footprints {
         fp.n = (per_axis, per_axis);
         fp.inv_cell = Vec2::splat(per_axis as f32) / size;
         // Count each cell's objects, turn the counts into starts, then place
-        // the objects (each cell keeps `rects`' order, the query order).
+        // the objects (each cell keeps `rects`' order, the query order; an
+        // object whose pieces reach a cell twice is placed there once).
         let cells = per_axis * per_axis;
-        // Each object's first and last cell (x, y).
-        let spans: Vec<(usize, Cell2, Cell2)> = rects
+        let spans: Vec<(usize, Vec<(Cell2, Cell2)>)> = rects
             .iter()
-            .map(|&(i, (a, b))| (i, fp.cell_of(a), fp.cell_of(b)))
+            .map(|(i, r)| {
+                (
+                    *i,
+                    r.iter()
+                        .map(|&(a, b)| (fp.cell_of(a), fp.cell_of(b)))
+                        .collect(),
+                )
+            })
             .collect();
-        let mut fill = vec![0u32; cells + 1];
-        for &(_, (x0, y0), (x1, y1)) in &spans {
-            for y in y0..=y1 {
-                for slot in &mut fill[y * per_axis + x0 + 1..=y * per_axis + x1 + 1] {
-                    *slot += 1;
+        let each_cell = |visit: &mut dyn FnMut(usize, usize)| {
+            let mut last = vec![usize::MAX; cells];
+            for (n, (i, parts)) in spans.iter().enumerate() {
+                for &((x0, y0), (x1, y1)) in parts {
+                    for y in y0..=y1 {
+                        for x in x0..=x1 {
+                            let k = y * per_axis + x;
+                            if last[k] != n {
+                                last[k] = n;
+                                visit(k, *i);
+                            }
+                        }
+                    }
                 }
             }
-        }
+        };
+        let mut fill = vec![0u32; cells + 1];
+        each_cell(&mut |k, _| fill[k + 1] += 1);
         for k in 0..cells {
             fill[k + 1] += fill[k];
         }
         fp.items = vec![0; fill[cells] as usize];
         fp.starts.clone_from(&fill);
-        for &(i, (x0, y0), (x1, y1)) in &spans {
-            for y in y0..=y1 {
-                for x in x0..=x1 {
-                    let at = &mut fill[y * per_axis + x];
-                    fp.items[*at as usize] = i;
-                    *at += 1;
-                }
-            }
-        }
+        each_cell(&mut |k, i| {
+            fp.items[fill[k] as usize] = i;
+            fill[k] += 1;
+        });
         Some(fp)
     }
 
@@ -352,3 +375,6 @@ impl Footprints {
         }
     }
 }
+
+#[cfg(test)]
+mod tests;

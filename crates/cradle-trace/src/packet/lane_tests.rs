@@ -167,7 +167,8 @@ fn lane_lookups_find_the_scalar_cells() {
     let mut rng = Lcg(5);
     let mut kinds = [0u32; 3];
     for light in &lights {
-        let fp = Footprints::new(Vec3::ZERO, Vec3::Y, light, &bounded).expect("lit");
+        let fp =
+            Footprints::new(Vec3::ZERO, Vec3::Y, light, &bounded, |_| Vec::new()).expect("lit");
         for round in 0..500 {
             // Starts just off the floor near the cradle and far out, some below
             // it, some as high as the low light.

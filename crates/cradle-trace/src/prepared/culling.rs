@@ -4,7 +4,7 @@
 
 use super::Prepared;
 use crate::bvh::Bvh;
-use crate::casters::Casters;
+use crate::casters::{Casters, piece_boxes};
 use crate::geometry::Aabb;
 use crate::scene::Shape;
 use crate::shadow::Footprints;
@@ -38,7 +38,10 @@ impl Prepared<'_> {
                 scene
                     .lights
                     .iter()
-                    .map(|l| Footprints::new(point, normal, l, &self.bounded))
+                    .map(|l| {
+                        let pieces = |i: usize| piece_boxes(&scene.objects[i].shape);
+                        Footprints::new(point, normal, l, &self.bounded, pieces)
+                    })
                     .collect()
             })
             .collect()
