@@ -334,6 +334,9 @@ impl Packet<'_, '_> {
         let mut out = 0;
         for k in ks {
             out |= self.blocks(s, k, r, live & !out);
+            if out == live {
+                break;
+            }
         }
         out
     }
