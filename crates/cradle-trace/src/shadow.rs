@@ -39,6 +39,24 @@ pub(crate) enum Lookup {
     Cell(usize),
 }
 
+impl Lookup {
+    /// [`Lookup::Unlit`] as a lane's number ([`Lookup::of`]).
+    pub(crate) const UNLIT: u32 = u32::MAX;
+    /// [`Lookup::Always`] as a lane's number.
+    pub(crate) const ALWAYS: u32 = u32::MAX - 1;
+
+    /// The lookup a lane's number stands for: a cell's index (grids have at
+    /// most 256 x 256 cells), [`Self::UNLIT`] or [`Self::ALWAYS`]. Packets
+    /// keep numbers, which compare eight at a time.
+    pub(crate) fn of(code: u32) -> Self {
+        match code {
+            Self::UNLIT => Self::Unlit,
+            Self::ALWAYS => Self::Always,
+            k => Self::Cell(k as usize),
+        }
+    }
+}
+
 /// [`Footprints::lookup`]'s numbers: the plane, the light (a point, or a
 /// direction of travel), the light's height over the plane (point) or the
 /// direction's component along the normal, and the grid.

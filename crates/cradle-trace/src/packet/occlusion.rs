@@ -16,7 +16,7 @@
 )]
 
 use super::vec::select3;
-use super::{L3, LANES, Packet, lanes, lanes_with, splat3};
+use super::{L3, LANES, Packet, lanes_with, splat3};
 use crate::geometry::{Aabb, Cylinder, T_MIN};
 use crate::prepared::Geom;
 use crate::shadow::{GridView, Lookup};
@@ -204,8 +204,9 @@ pub(super) fn blocks8<S: Simd>(s: S, g: &Geom, o: &L3<S::F>, d: &L3<S::F>, t_max
 /// `Footprints::lookup` of the lanes' shadow-ray starts `x`, with the same
 /// operations: the side of the plane, the projection from the light, the plane
 /// coordinates, the grid cell (truncation, as `as usize` of a value in `0..n`).
+/// Each lane's answer as a number ([`Lookup::of`]).
 #[inline(always)]
-pub(super) fn lookup<S: Simd>(s: S, g: &GridView, x: &L3<S::F>) -> [Lookup; LANES] {
+pub(super) fn lookup<S: Simd>(s: S, g: &GridView, x: &L3<S::F>) -> [u32; LANES] {
     let k = |v: f32| s.splat(v);
     let n = splat3(s, g.normal);
     // (start - origin).dot(normal) < 0: behind the plane.
@@ -232,16 +233,25 @@ pub(super) fn lookup<S: Simd>(s: S, g: &GridView, x: &L3<S::F>) -> [Lookup; LANE
         S::le(zero, cx) & S::le(zero, cy) & S::lt(cx, k(g.n.0 as f32)) & S::lt(cy, k(g.n.1 as f32));
     let (unlit, inside) = (S::bits(unlit), S::bits(inside));
     let (ix, iy) = (S::trunc(cx), S::trunc(cy));
-    lanes(|i| {
-        if unlit >> i & 1 != 0 {
-            Lookup::Unlit
-        } else if !g.gridded || inside >> i & 1 == 0 {
-            Lookup::Always
+    let inside = if g.gridded { inside } else { 0 };
+    let mut out = [0; LANES];
+    for (i, o) in out.iter_mut().enumerate() {
+        // In the grid: 0 <= ix < n.0 and 0 <= iy < n.1 (else not used).
+        let cell = (iy[i] as u32)
+            .wrapping_mul(g.n.0 as u32)
+            .wrapping_add(ix[i] as u32);
+        let placed = if inside >> i & 1 != 0 {
+            cell
         } else {
-            // In the grid: 0 <= ix < n.0 and 0 <= iy < n.1.
-            Lookup::Cell(iy[i] as usize * g.n.0 + ix[i] as usize)
-        }
-    })
+            Lookup::ALWAYS
+        };
+        *o = if unlit >> i & 1 != 0 {
+            Lookup::UNLIT
+        } else {
+            placed
+        };
+    }
+    out
 }
 
 /// The lanes' shadow rays: from `start` along `dir` (`inv` its inverse) up to
@@ -365,8 +375,8 @@ impl Packet<'_, '_> {
         let fp = p.footprints(plane, li);
         // Lane by lane, where its footprint cell is (or no grid: every object);
         // lanes with the same lists are tested together.
-        let at: [Lookup; LANES] = match fp {
-            None => [Lookup::Unlit; LANES],
+        let at: [u32; LANES] = match fp {
+            None => [Lookup::UNLIT; LANES],
             Some(f) => lookup(s, &f.view(), start),
         };
         let rays = Rays {
@@ -378,7 +388,7 @@ impl Packet<'_, '_> {
         while todo != 0 {
             let first = at[todo.trailing_zeros() as usize];
             let group = lanes_with(&at, &first, todo);
-            out |= match fp.and_then(|f| f.list(first)) {
+            out |= match fp.and_then(|f| f.list(Lookup::of(first))) {
                 Some((cell, always)) => {
                     let list = cell.iter().chain(always).copied();
                     self.blocked_by(s, list, &rays, group & !out)
