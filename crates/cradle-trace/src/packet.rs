@@ -44,6 +44,7 @@ mod bounce;
 #[cfg(test)]
 mod lane_tests;
 mod lanes;
+mod lookup;
 mod notes;
 mod objects;
 mod occlusion;

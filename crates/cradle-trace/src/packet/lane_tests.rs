@@ -3,7 +3,8 @@
 //! (zero direction components, infinite inverses), from inside, grazing, along
 //! a cylinder's axis (caps only) and across it.
 
-use super::occlusion::{blocks8, box8, lookup};
+use super::lookup::lookup;
+use super::occlusion::{blocks8, box8};
 use super::{F8, LANES, V8, load3};
 use crate::geometry::{Aabb, Cylinder, Ray, hit_sphere};
 use crate::prepared::Geom;

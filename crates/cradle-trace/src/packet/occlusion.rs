@@ -1,6 +1,6 @@
 //! What a packet's lanes meet on the way, all lanes at once in lane build `S`:
-//! the box, sphere and cylinder tests, the footprint lookups of shadow rays, the
-//! objects in front of the floor, and the floor lanes' shadow rays (what
+//! the box, sphere and cylinder tests (the footprint lookups of shadow rays are
+//! in `lookup`), the objects in front of the floor, and the floor lanes' shadow rays (what
 //! `Prepared::occluded_by` answers for each lane's ray: the planes, the group
 //! box, then the objects the lane's footprint cell lists, each through its box).
 //! Each lane computes the scalar test's operations in the scalar order
@@ -15,11 +15,12 @@
     reason = "the lane code is inlined into each entry point, so the AVX2 one compiles it for AVX2"
 )]
 
+use super::lookup::lookup;
 use super::vec::select3;
 use super::{L3, LANES, Packet, lanes_with, splat3};
 use crate::geometry::{Aabb, Cylinder, T_MIN};
 use crate::prepared::Geom;
-use crate::shadow::{GridView, Lookup};
+use crate::shadow::Lookup;
 use crate::simd::Simd;
 use glam::Vec3;
 
@@ -199,59 +200,6 @@ pub(super) fn hit8<S: Simd>(s: S, g: &Geom, o: &L3<S::F>, d: &L3<S::F>) -> S::F 
 #[inline(always)]
 pub(super) fn blocks8<S: Simd>(s: S, g: &Geom, o: &L3<S::F>, d: &L3<S::F>, t_max: S::F) -> S::M {
     S::lt(hit8(s, g, o, d), t_max)
-}
-
-/// `Footprints::lookup` of the lanes' shadow-ray starts `x`, with the same
-/// operations: the side of the plane, the projection from the light, the plane
-/// coordinates, the grid cell (truncation, as `as usize` of a value in `0..n`).
-/// Each lane's answer as a number ([`Lookup::of`]).
-#[inline(always)]
-pub(super) fn lookup<S: Simd>(s: S, g: &GridView, x: &L3<S::F>) -> [u32; LANES] {
-    let k = |v: f32| s.splat(v);
-    let n = splat3(s, g.normal);
-    // (start - origin).dot(normal) < 0: behind the plane.
-    let height = x.sub(&splat3(s, g.origin)).dot(&n);
-    let mut unlit = S::lt(height, k(0.0));
-    let p = match g.light {
-        Ok(l) => {
-            // down = (l - x).dot(normal); down <= 1e-6 * height: level with it.
-            let lv = splat3(s, l);
-            let down = lv.sub(x).dot(&n);
-            unlit = unlit | S::le(down, k(1e-6 * g.scale));
-            // l + (x - l) * (height / down)
-            lv.add(&x.sub(&lv).scale(k(g.scale) / down))
-        }
-        // x + d * (-(x - origin).dot(normal) / d.dot(normal))
-        Err(d) => x.add(&splat3(s, d).scale(-height / k(g.scale))),
-    };
-    // coords: (p - origin).dot(e1), .dot(e2); then (q - min) * inv_cell.
-    let q = p.sub(&splat3(s, g.origin));
-    let cx = (q.dot(&splat3(s, g.e1)) - k(g.min.x)) * k(g.inv_cell.x);
-    let cy = (q.dot(&splat3(s, g.e2)) - k(g.min.y)) * k(g.inv_cell.y);
-    let zero = k(0.0);
-    let inside =
-        S::le(zero, cx) & S::le(zero, cy) & S::lt(cx, k(g.n.0 as f32)) & S::lt(cy, k(g.n.1 as f32));
-    let (unlit, inside) = (S::bits(unlit), S::bits(inside));
-    let (ix, iy) = (S::trunc(cx), S::trunc(cy));
-    let inside = if g.gridded { inside } else { 0 };
-    let mut out = [0; LANES];
-    for (i, o) in out.iter_mut().enumerate() {
-        // In the grid: 0 <= ix < n.0 and 0 <= iy < n.1 (else not used).
-        let cell = (iy[i] as u32)
-            .wrapping_mul(g.n.0 as u32)
-            .wrapping_add(ix[i] as u32);
-        let placed = if inside >> i & 1 != 0 {
-            cell
-        } else {
-            Lookup::ALWAYS
-        };
-        *o = if unlit >> i & 1 != 0 {
-            Lookup::UNLIT
-        } else {
-            placed
-        };
-    }
-    out
 }
 
 /// The lanes' shadow rays: from `start` along `dir` (`inv` its inverse) up to
