@@ -21,52 +21,79 @@ const FIRST_BUCKET: u32 = (1.0f32 / 16384.0).to_bits() >> BUCKET_SHIFT;
 /// Buckets up to and including that of 1.0.
 const BUCKETS: usize = ((1.0f32.to_bits() >> BUCKET_SHIFT) - FIRST_BUCKET + 1) as usize;
 
-/// The thresholds, and per bucket the byte of its lowest value.
+/// The low 15 bits of a float: its place within its bucket. Two positive
+/// floats of one bucket compare as these bits do.
+const IN_BUCKET: u32 = (1 << BUCKET_SHIFT) - 1;
+/// A bucket entry's place of the next threshold when it lies past the bucket:
+/// above every [`IN_BUCKET`] value.
+const PAST: u32 = 1 << BUCKET_SHIFT;
+
+/// Per bucket one entry: the byte of its lowest value and where in the bucket
+/// the next threshold lies.
 struct Table {
-    /// The linear value at which the sRGB byte becomes `b + 1`, for `b` in
-    /// 0..255: the decoded midpoint `(b + 0.5) / 255`, computed in f64 once;
-    /// entry 255 is infinity (no byte above 255).
-    thresholds: [f32; 256],
-    low: Vec<u32>,
+    /// Per bucket, `low << 16 | at`: `low` the byte of the bucket's lowest
+    /// value (the count of thresholds at or below it), `at` the [`IN_BUCKET`]
+    /// bits of the next threshold, `thresholds()[low]`, where it lies in the
+    /// bucket, else [`PAST`]. So a value of the bucket has byte `low + 1` where
+    /// its own `IN_BUCKET` bits are at least `at`, else `low`: one lookup.
+    entries: Vec<u32>,
+}
+
+/// The linear value at which the sRGB byte becomes `b + 1`, for `b` in
+/// 0..255: the decoded midpoint `(b + 0.5) / 255`, computed in f64; entry 255
+/// is infinity (no byte above 255).
+fn thresholds() -> [f32; 256] {
+    std::array::from_fn(|b| {
+        if b == 255 {
+            return f32::INFINITY;
+        }
+        let s = (b as f64 + 0.5) / 255.0;
+        let linear = if s <= 0.040_45 {
+            s / 12.92
+        } else {
+            ((s + 0.055) / 1.055).powf(2.4)
+        };
+        linear as f32
+    })
 }
 
 fn table() -> &'static Table {
     static T: std::sync::OnceLock<Table> = std::sync::OnceLock::new();
     T.get_or_init(|| {
-        let thresholds: [f32; 256] = std::array::from_fn(|b| {
-            if b == 255 {
-                return f32::INFINITY;
-            }
-            let s = (b as f64 + 0.5) / 255.0;
-            let linear = if s <= 0.040_45 {
-                s / 12.92
-            } else {
-                ((s + 0.055) / 1.055).powf(2.4)
-            };
-            linear as f32
-        });
-        let low = (0..BUCKETS as u32)
+        let thresholds = thresholds();
+        let entries = (0..BUCKETS as u32)
             .map(|i| {
-                let lowest = f32::from_bits((FIRST_BUCKET + i) << BUCKET_SHIFT);
-                thresholds.partition_point(|&t| t <= lowest) as u32
+                let bucket = FIRST_BUCKET + i;
+                let lowest = f32::from_bits(bucket << BUCKET_SHIFT);
+                let low = thresholds.partition_point(|&t| t <= lowest) as u32;
+                let next = thresholds[low as usize].to_bits();
+                let at = if next >> BUCKET_SHIFT == bucket {
+                    next & IN_BUCKET
+                } else {
+                    PAST
+                };
+                low << 16 | at
             })
             .collect();
-        Table { thresholds, low }
+        Table { entries }
     })
 }
 
 /// Linear [0, 1] to an sRGB byte (IEC 61966-2-1), rounded to the nearest byte and
 /// clamping out-of-range values: the count of decision points at or below the
-/// value. The value's bucket gives the count at the bucket's start; one
-/// comparison with the next threshold finishes it (no `powf`, no search).
+/// value. The value's bucket gives the count at the bucket's start and where
+/// the next threshold lies in it; one comparison of bits finishes it (no
+/// `powf`, no search). Below 2^-14 every value takes the first bucket, whose
+/// next threshold lies past it: byte 0.
 #[must_use]
 pub fn srgb8(linear: f32) -> u8 {
     let t = table();
     // NaN and negatives count as 0, values over 1 as 1 (the clamp it replaces).
     let c = if linear > 0.0 { linear.min(1.0) } else { 0.0 };
-    let bucket = ((c.to_bits() >> BUCKET_SHIFT).saturating_sub(FIRST_BUCKET)) as usize;
-    let low = t.low[bucket];
-    (low + u32::from(t.thresholds[low as usize] <= c)) as u8
+    let bits = c.to_bits();
+    let bucket = ((bits >> BUCKET_SHIFT).saturating_sub(FIRST_BUCKET)) as usize;
+    let entry = t.entries[bucket];
+    ((entry >> 16) + u32::from(bits & IN_BUCKET >= entry & 0xFFFF)) as u8
 }
 
 /// [`srgb8`] of eight values at once, for packets (the same steps per lane).
@@ -94,16 +121,16 @@ pub(crate) fn rgba8_lanes(r: [f32; 8], g: [f32; 8], b: [f32; 8]) -> [u32; 8] {
 }
 
 /// [`rgba8_lanes`] in AVX2: per channel the same clamp (`max` with 0 takes 0 for
-/// NaN and -0), the bucket's byte and the next threshold by two gathers, one
-/// comparison; the channels are packed in the registers.
+/// NaN and -0), the bucket's entry by one gather, one comparison of bits; the
+/// channels are packed in the registers.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 #[inline]
 #[must_use]
 pub(crate) fn rgba8_avx2(r: &[f32; 8], g: &[f32; 8], b: &[f32; 8]) -> [u32; 8] {
     use std::arch::x86_64::{
-        __m256i, _CMP_LE_OQ, _mm256_castps_si256, _mm256_cmp_ps, _mm256_i32gather_epi32,
-        _mm256_i32gather_ps, _mm256_loadu_ps, _mm256_max_epi32, _mm256_max_ps, _mm256_min_ps,
+        __m256i, _mm256_add_epi32, _mm256_and_si256, _mm256_castps_si256, _mm256_cmpgt_epi32,
+        _mm256_i32gather_epi32, _mm256_loadu_ps, _mm256_max_epi32, _mm256_max_ps, _mm256_min_ps,
         _mm256_or_si256, _mm256_set1_epi32, _mm256_set1_ps, _mm256_setzero_ps,
         _mm256_setzero_si256, _mm256_slli_epi32, _mm256_srli_epi32, _mm256_storeu_si256,
         _mm256_sub_epi32,
@@ -111,24 +138,31 @@ pub(crate) fn rgba8_avx2(r: &[f32; 8], g: &[f32; 8], b: &[f32; 8]) -> [u32; 8] {
     let t = table();
     let count = |linear: &[f32; 8]| -> __m256i {
         // SAFETY: loads the eight floats of `linear`; the bucket index lies in
-        // 0..BUCKETS (the value is clamped to [0, 1], the index to >= 0) and the
-        // bucket's byte in 0..=255, so both gathers read in bounds.
-        #[expect(unsafe_code, reason = "AVX2 loads and gathers within bounds")]
+        // 0..BUCKETS (the value is clamped to [0, 1], the index to >= 0), so
+        // the gather reads in bounds.
+        #[expect(unsafe_code, reason = "AVX2 loads and a gather within bounds")]
         unsafe {
             let v = _mm256_loadu_ps(linear.as_ptr());
-            let c = _mm256_min_ps(_mm256_max_ps(v, _mm256_setzero_ps()), _mm256_set1_ps(1.0));
+            let c = _mm256_castps_si256(_mm256_min_ps(
+                _mm256_max_ps(v, _mm256_setzero_ps()),
+                _mm256_set1_ps(1.0),
+            ));
             let bucket = _mm256_max_epi32(
                 _mm256_sub_epi32(
-                    _mm256_srli_epi32::<{ BUCKET_SHIFT as i32 }>(_mm256_castps_si256(c)),
+                    _mm256_srli_epi32::<{ BUCKET_SHIFT as i32 }>(c),
                     _mm256_set1_epi32(FIRST_BUCKET as i32),
                 ),
                 _mm256_setzero_si256(),
             );
-            let low = _mm256_i32gather_epi32::<4>(t.low.as_ptr().cast(), bucket);
-            let next = _mm256_i32gather_ps::<4>(t.thresholds.as_ptr(), low);
-            // low - (-1 where next <= c)
-            let up = _mm256_castps_si256(_mm256_cmp_ps::<_CMP_LE_OQ>(next, c));
-            _mm256_sub_epi32(low, up)
+            let entry = _mm256_i32gather_epi32::<4>(t.entries.as_ptr().cast(), bucket);
+            let at = _mm256_and_si256(entry, _mm256_set1_epi32(0xFFFF));
+            let here = _mm256_and_si256(c, _mm256_set1_epi32(IN_BUCKET as i32));
+            // low + 1 + (-1 where at > here): both below 2^16, so signed
+            // comparison is exact.
+            _mm256_add_epi32(
+                _mm256_add_epi32(_mm256_srli_epi32::<16>(entry), _mm256_set1_epi32(1)),
+                _mm256_cmpgt_epi32(at, here),
+            )
         }
     };
     let (r, g, b) = (count(r), count(g), count(b));
@@ -151,7 +185,7 @@ mod tests {
 
     /// The definition: the count of thresholds at or below the value (NaN: 0).
     fn by_search(linear: f32) -> u8 {
-        super::table().thresholds[..255].partition_point(|&t| t <= linear) as u8
+        super::thresholds()[..255].partition_point(|&t| t <= linear) as u8
     }
 
     #[test]
@@ -162,8 +196,8 @@ mod tests {
         // on every float.
         let starts =
             (0..=BUCKETS as u32 + 1).map(|i| f32::from_bits((FIRST_BUCKET + i) << BUCKET_SHIFT));
-        let thresholds = super::table().thresholds[..255].iter().copied();
-        for x in starts.chain(thresholds) {
+        let thresholds = super::thresholds();
+        for x in starts.chain(thresholds[..255].iter().copied()) {
             for v in [x.next_down(), x, x.next_up()] {
                 assert_eq!(srgb8(v), by_search(v), "{v:e}");
             }
@@ -189,7 +223,7 @@ mod tests {
     #[test]
     fn lanes_of_pixels_hold_the_scalar_bytes() {
         // Every threshold and its neighbours, out-of-range values and NaN.
-        let mut v: Vec<f32> = super::table().thresholds[..255]
+        let mut v: Vec<f32> = super::thresholds()[..255]
             .iter()
             .flat_map(|&t| [t.next_down(), t, t.next_up()])
             .collect();

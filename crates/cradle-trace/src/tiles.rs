@@ -177,6 +177,7 @@ impl Tiles {
     /// copy of the list). `None` for no plane, several, or too many others. A
     /// primary ray through those pixels can hit nothing else.
     #[must_use]
+    #[inline]
     pub fn plane_among(
         &self,
         p: &Prepared<'_>,
