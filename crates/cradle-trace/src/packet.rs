@@ -15,8 +15,10 @@
 //! The kernel is written once over a lane build `S: Simd` (`crate::simd`): one
 //! AVX instruction per operation where the CPU has AVX2 (chosen at run time, in
 //! `Packet::floor`), plain loops over arrays elsewhere. Rays and hits are here,
-//! the shading in `lanes`, the bounces past it in `bounce`, the objects met on
-//! the way in `occlusion` and `objects`, the lane vectors in `vec`.
+//! the shading in `lanes`, the bounces past it in `bounce` (their nearest hits
+//! in `nearest`), the objects met on the way in `occlusion` and `objects`, the
+//! lane vectors in `vec`. A plane's own shadow and mirror rays never test it
+//! (`Prepared::closest_from`), here as in the scalar path.
 
 #![expect(
     clippy::inline_always,
@@ -45,6 +47,7 @@ mod bounce;
 mod lane_tests;
 mod lanes;
 mod lookup;
+mod nearest;
 mod notes;
 mod objects;
 mod occlusion;
@@ -350,6 +353,7 @@ impl Packet<'_, '_> {
                 depth: 0,
                 weight: k(1.0),
                 free: 0,
+                from: k(-1.0),
             };
             let cradle = self.bounce(s, &ray, front, Some((0, which)));
             color = vec::select3::<S>(s.mask(front), &cradle, &color);

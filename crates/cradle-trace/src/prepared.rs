@@ -103,6 +103,7 @@ pub struct Prepared<'a> {
 }
 
 mod culling;
+mod occlusion;
 
 impl<'a> Prepared<'a> {
     /// Bounds for every object of `scene`.
@@ -170,12 +171,19 @@ impl<'a> Prepared<'a> {
     }
 
     /// The nearest hit before `t_max` among `candidates` (indices in query order),
-    /// which must include every object the ray can hit: primary rays of a tile.
+    /// which must include every object the ray can hit: primary rays of a tile,
+    /// or the mirror rays of plane `from`'s points there, which do not test it
+    /// ([`Self::closest_from`]; `usize::MAX` for none).
     #[must_use]
-    pub fn closest_among(&self, ray: &Ray, t_max: f32, candidates: &[usize]) -> Option<Hit> {
+    pub fn closest_among(
+        &self,
+        ray: &Ray,
+        t_max: f32,
+        (candidates, from): (&[usize], usize),
+    ) -> Option<Hit> {
         let mut best: Option<(f32, usize, Vec3)> = None;
         let inv = ray.dir.recip();
-        for &i in candidates {
+        for &i in candidates.iter().filter(|&&i| i != from) {
             let limit = best.map_or(t_max, |b| b.0);
             // The box test first, as the full scan does: a hit that grazes a
             // shape's box can round either way, and must round the same way.
@@ -199,24 +207,28 @@ impl<'a> Prepared<'a> {
     }
 
     /// [`Self::closest`] for the mirror ray of a point of object `from` that its
-    /// ray met from `outside`: with the hierarchy on, the object itself is not
-    /// tested when the ray starts clearly outside it ([`clear_of`]), as it then
-    /// cannot meet it. The same hit either way.
+    /// ray met from `outside`. A plane's own rays never test it, in every
+    /// renderer (the one rule of hits that the reference keeps too); with the
+    /// hierarchy on, a bounded object is not tested either when the ray starts
+    /// clearly outside it ([`clear_of`]), as it then cannot meet it: the same
+    /// hit either way.
     ///
     /// The mirror ray leaves along `d - 2 (d . n) n`, with `n` turned to face the
     /// incoming `d`, so it runs away from the tangent plane at the point (or
     /// along it, at a grazing bounce, to rounding), from a start 2e-5 m off the
     /// surface along `n`. A sphere, a capped cylinder or a plane lies wholly on
     /// the other side of that plane, so the ray would have to travel some 200 m
-    /// before rounding of its direction (about 1e-7) brought it back: no hit. A
-    /// point met from inside (a reflection starting within a touching ball) is
-    /// tested, as the reference does.
+    /// before rounding of its direction (about 1e-7) brought it back: no hit
+    /// (for a plane, only a far point's own rounding could make one). A point
+    /// met from inside (a reflection starting within a touching ball) is tested,
+    /// as the reference does.
     #[must_use]
     pub fn closest_from(&self, from: Option<(usize, bool)>, ray: &Ray, t_max: f32) -> Option<Hit> {
+        let own = self.own_plane(from.map(|f| f.0));
         if let Some(bvh) = &self.bvh {
             let skip = from
                 .filter(|&(i, outside)| outside && clear_of(self.geom(i), ray.origin))
-                .map_or(usize::MAX, |(i, _)| i);
+                .map_or(own, |(i, _)| i);
             if self.bounded.len() > WIDE_AT_MOST {
                 return self.closest_bvh(bvh, ray, t_max, skip);
             }
@@ -231,7 +243,7 @@ impl<'a> Prepared<'a> {
                 *best = Some((t, i, n));
             }
         };
-        for &i in &self.planes {
+        for &i in self.planes.iter().filter(|&&i| i != own) {
             consider(i, &mut best);
         }
         let inv = ray.dir.recip();
@@ -292,41 +304,6 @@ impl<'a> Prepared<'a> {
         self
     }
 
-    /// Whether anything lies on the ray before `t_max` (shadow rays: any hit ends them).
-    #[must_use]
-    pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
-        self.occluded_by(ray, t_max, None)
-    }
-
-    /// [`Self::occluded`] for a shadow ray towards light `light` from a point of
-    /// object `from`: with shadow culling, from a plane only the objects whose
-    /// shadow can fall there are tested. The same answer either way.
-    #[must_use]
-    pub fn occluded_towards(
-        &self,
-        (from, outside): (usize, bool),
-        light: usize,
-        ray: &Ray,
-        t_max: f32,
-    ) -> bool {
-        if let Some(list) = self.casters.as_ref().and_then(|c| {
-            let clear = outside && clear_of(self.geom(from), ray.origin);
-            c.get(from)?.as_ref()?.at(light, ray.origin, clear)
-        }) {
-            if self.occluded_by_planes(ray, t_max) {
-                return true;
-            }
-            let inv = ray.dir.recip();
-            return list.scan(
-                ray,
-                inv,
-                || t_max,
-                |i, _, _| self.hit_object(i, ray).is_some_and(|(t, _)| t < t_max),
-            );
-        }
-        self.occluded_by(ray, t_max, self.footprints(from, light))
-    }
-
     /// The casters of object `i`'s shadow rays, when shadow culling is on and
     /// it is bounded.
     pub(crate) fn casters(&self, i: usize) -> Option<&Casters> {
@@ -344,53 +321,5 @@ impl<'a> Prepared<'a> {
     #[must_use]
     pub fn planes(&self) -> &[usize] {
         &self.planes
-    }
-
-    /// [`Self::occluded`] for a shadow ray that only a plane can block (its start
-    /// is where no bounded object casts a shadow: [`Footprints::region_clear`]).
-    #[must_use]
-    pub fn occluded_by_planes(&self, ray: &Ray, t_max: f32) -> bool {
-        self.planes
-            .iter()
-            .any(|&i| self.hit_object(i, ray).is_some_and(|(t, _)| t < t_max))
-    }
-
-    /// Any hit before `t_max` on a plane, or, inside the box around them all, on a
-    /// bounded object (each tested through its own box): all of them, or those
-    /// `footprints` leaves for the ray's start.
-    fn occluded_by(&self, ray: &Ray, t_max: f32, footprints: Option<&Footprints>) -> bool {
-        if self.occluded_by_planes(ray, t_max) {
-            return true;
-        }
-        let blocks = |i: usize| self.hit_object(i, ray).is_some_and(|(t, _)| t < t_max);
-        let inv = ray.dir.recip();
-        if !self.group.hit(ray, inv, t_max) {
-            return false;
-        }
-        let test = |i: usize| self.boxes[i].hit(ray, inv, t_max) && blocks(i);
-        match (
-            footprints.and_then(|fp| fp.candidates(ray.origin)),
-            &self.bvh,
-        ) {
-            (Some((cell, always)), _) => cell.iter().chain(always).any(|&i| test(i)),
-            (None, Some(_)) if self.bounded.len() <= WIDE_AT_MOST => {
-                self.wide
-                    .list()
-                    .scan(ray, inv, || t_max, |i, _, _| blocks(i))
-            }
-            (None, Some(bvh)) => bvh.traverse(
-                ray,
-                inv,
-                || t_max,
-                |k| {
-                    let (i, b) = self.bounded[k];
-                    b.hit(ray, inv, t_max) && blocks(i)
-                },
-            ),
-            (None, None) => self
-                .bounded
-                .iter()
-                .any(|&(i, ref b)| b.hit(ray, inv, t_max) && blocks(i)),
-        }
     }
 }

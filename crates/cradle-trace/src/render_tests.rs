@@ -174,3 +174,87 @@ fn packets_equal_the_reference_with_a_checkered_mirror_ball() {
         .0;
     assert!(fast == full, "the same picture");
 }
+
+#[test]
+fn no_renderer_tests_a_planes_own_rays() {
+    // A tilted mirror floor seen along its length from close by: about 700 m
+    // off, a point's rounding outgrows the 2e-5 m lift of its mirror ray,
+    // which, tested against the floor, would meet it again 1 cm on (and see
+    // the floor from below, not the sky). The packets' mirror rays, the
+    // culled scalar path's and the reference's skip it alike. (Deeper bounces
+    // keep the rule through `Bounce::from`; the floor's shadow rays here run
+    // along the normal, clear of it.)
+    let normal = Vec3::new(0.0, 1.0, 1.0).normalize();
+    let floor = Material {
+        color: Vec3::new(0.3, 0.2, 0.1),
+        specular: Some(20.0),
+        reflective: 0.3,
+        checker: Some((Vec3::new(0.2, 0.1, 0.1), 0.05)),
+    };
+    let ball = Object {
+        shape: Shape::Sphere {
+            centre: normal * 0.3,
+            radius: 0.1,
+        },
+        material: floor,
+        moving: false,
+    };
+    let eye = normal * 0.5 + Vec3::new(0.0, 0.0, 2.0);
+    // Along the floor, and a little down towards it.
+    let along = (Vec3::NEG_Z - normal * normal.z * -1.0).normalize();
+    let scene = Scene {
+        objects: vec![
+            Object {
+                shape: Shape::Plane {
+                    point: Vec3::ZERO,
+                    normal,
+                },
+                material: floor,
+                moving: false,
+            },
+            ball,
+        ],
+        // Lighting the far floor fully (a point light would graze it there).
+        lights: vec![Light::Directional {
+            direction: -normal,
+            color: Vec3::ONE,
+        }],
+        camera: Camera {
+            position: eye,
+            look_at: eye + along - normal * 0.01,
+            fov_deg: 8.0,
+        },
+        // A sky that a mirror ray meeting the floor again would not see.
+        background: Vec3::new(0.3, 0.4, 0.6),
+        size: (64, 48),
+        max_depth: 2,
+        samples: 1,
+        ..Scene::default()
+    };
+    // The scene does what it should: some of the floor's mirror rays, tested
+    // against the floor, meet it.
+    let p = crate::Prepared::new(&scene);
+    let cam = crate::camera::CameraRays::new(&scene.camera, 64, 48);
+    let mut again = 0;
+    for (x, y) in (0..48).flat_map(|y| (0..64).map(move |x| (x, y))) {
+        let ray = cam.ray(x as f32 + 0.5, y as f32 + 0.5);
+        let Some(hit) = p.closest(&ray, f32::INFINITY).filter(|h| h.object == 0) else {
+            continue;
+        };
+        let start = ray.at(hit.t) + hit.normal * crate::shade::SURFACE_OFFSET;
+        let dir = ray.dir - 2.0 * ray.dir.dot(hit.normal) * hit.normal;
+        let mirror = crate::geometry::Ray { origin: start, dir };
+        again += usize::from(
+            p.closest(&mirror, f32::INFINITY)
+                .is_some_and(|h| h.object == 0),
+        );
+    }
+    assert!(again > 0, "no mirror ray meets its own floor");
+    let full = Frame::new(&scene, RenderOptions::FULL, false)
+        .image(false)
+        .0;
+    let fast = Frame::new(&scene, RenderOptions::FAST, false)
+        .image(false)
+        .0;
+    assert!(fast == full, "packets and culling keep the rule");
+}

@@ -138,7 +138,7 @@ pub fn trace_primary(
     bound: f32,
     motion: &mut Motion,
 ) -> Vec3 {
-    let hit = p.closest_among(ray, f32::INFINITY, tiles.at(x, y));
+    let hit = p.closest_among(ray, f32::INFINITY, (tiles.at(x, y), usize::MAX));
     shade(p, ray, hit, 0, 1.0, bound, motion, Some((tiles, x, y)))
 }
 
@@ -242,7 +242,7 @@ pub(crate) fn blocked(
 ) -> bool {
     motion.segment(shadow, dist);
     if tile.is_some_and(|(t, x, y)| t.shadow_clear(p, (hit.object, li), x, y)) {
-        p.occluded_by_planes(shadow, dist)
+        p.occluded_by_planes(hit.object, shadow, dist)
     } else {
         p.occluded_towards((hit.object, hit.outside), li, shadow, dist)
     }
@@ -267,7 +267,7 @@ pub(crate) fn reflect(
     tile: Option<(&Tiles, u32, u32)>,
 ) -> Vec3 {
     let h = match tile.and_then(|(t, x, y)| t.mirror_at(object, x, y)) {
-        Some(c) => p.closest_among(mirror, f32::INFINITY, c),
+        Some(c) => p.closest_among(mirror, f32::INFINITY, (c, object)),
         None => p.closest_from(Some((object, outside)), mirror, f32::INFINITY),
     };
     shade(p, mirror, h, depth, weight, bound, motion, None)

@@ -1,7 +1,8 @@
 //! The packet's rays past the floor's own shading, over the lanes: the eye's
 //! rays that meet the cradle before the floor, and the floor's mirror rays.
 //! Level by level (one bounce each) instead of `shade`'s recursion: each
-//! level finds every lane's nearest hit as `closest` does, groups the lanes by
+//! level finds every lane's nearest hit as `closest` does (`nearest`; a
+//! plane's own mirror rays skip it, `Bounce::from`), groups the lanes by
 //! the object met, shades each group's lights and shadows over the lanes
 //! (`local_lanes`) and makes the mirror rays of the next level for the lanes
 //! that reflect. Then the levels are blended from the deepest up,
@@ -10,7 +11,7 @@
 //! Each group starts its shading from the object's hit test over the lanes
 //! with its normal (`hit_normal`, `Prepared::hit_object` per lane). A lane that
 //! test were not to meet (it met it when the nearest was found) is traced by the
-//! scalar `trace` instead.
+//! scalar path instead (`shade` from `Prepared::closest_from`).
 
 #![expect(
     clippy::inline_always,
@@ -18,28 +19,21 @@
 )]
 
 use super::lanes::Met;
-use super::occlusion::{box8, hit_normal, hit8, recip};
+use super::occlusion::hit_normal;
 use super::vec::select3;
 use super::{F8, L3, LANES, Packet, Surface, V8, lanes_with, load3, splat3, store3};
 use crate::geometry::Ray;
 use crate::prepared::Hit;
 use crate::scene::Shape;
-use crate::shade::{BAILOUT, SURFACE_OFFSET, shade, trace};
+use crate::shade::{BAILOUT, SURFACE_OFFSET, shade};
 #[cfg(target_arch = "x86_64")]
 use crate::simd::Avx2;
 use crate::simd::{Portable, Simd};
-use crate::wide::W;
 use glam::Vec3;
 
 /// Fewer lanes than this on one object are traced one by one, by the scalar
 /// path: cheaper than the lanes for one.
 const SHARED: u32 = 2;
-
-/// Up to this many bounded objects the lanes' nearest hit scans the boxes over
-/// the lanes (eight at a time behind their chunk's hull); past it each lane
-/// walks the hierarchy. Measured with the hulls: 200 balls (612 objects) cost
-/// 2,493 instructions per pixel scanning, 2,588 walking.
-const SCAN_AT_MOST: usize = 1024;
 
 /// Levels a packet's rays can pass through: depths 0 to 16 (the most
 /// `max_depth` allows).
@@ -56,6 +50,9 @@ pub(super) struct Bounce<F> {
     /// The lanes whose rays are free (`Motion::free`): mirror rays of camera
     /// rays that met a plane (camera rays, at depth 0, are free in every lane).
     pub(super) free: u8,
+    /// Per lane, the plane the ray leaves (its index as `f32`), which it does
+    /// not test (`Prepared::closest_from`), or -1.
+    pub(super) from: F,
 }
 
 /// One level's result per lane: the local colour, the reflectivity of what
@@ -69,6 +66,7 @@ pub(super) struct Bounce8 {
     pub(super) depth: u32,
     pub(super) weight: F8,
     pub(super) free: u8,
+    pub(super) from: F8,
 }
 
 /// A lane build with its own compiled copy of [`Packet::bounce_lanes`]: one
@@ -128,6 +126,7 @@ impl Packet<'_, '_> {
             depth: first.depth,
             weight: S::store(first.weight),
             free: first.free,
+            from: S::store(first.from),
         };
         // (No closure here: one left as a call is not compiled for AVX2.)
         let mut known = None;
@@ -146,6 +145,7 @@ impl Packet<'_, '_> {
             depth: b.depth,
             weight: s.load(&b.weight),
             free: b.free,
+            from: s.load(&b.from),
         };
         let mut known = None;
         if let Some((missed, which)) = found {
@@ -236,6 +236,7 @@ impl Packet<'_, '_> {
             depth: ray.depth + 1,
             weight: s.splat(0.0),
             free: 0,
+            from: s.splat(-1.0),
         };
         let mut scalar = (0u8, V8::ZERO);
         let mut todo = hitting;
@@ -249,10 +250,7 @@ impl Packet<'_, '_> {
                 for i in (0..LANES).filter(|i| group >> i & 1 != 0) {
                     let r = lane_ray(i);
                     let hit = p.hit_object(k, &r).map(|(t, n)| Hit::facing(&r, t, k, n));
-                    let w = S::store(ray.weight)[i];
-                    let c = self.scalar_lane((i, free), &r, hit, (ray.depth, w));
-                    (scalar.1.x[i], scalar.1.y[i], scalar.1.z[i]) = (c.x, c.y, c.z);
-                    scalar.0 |= 1 << i;
+                    self.lane_scalar::<S>((i, free), (ray, &r), hit, &mut scalar);
                 }
                 continue;
             }
@@ -267,10 +265,7 @@ impl Packet<'_, '_> {
             self.note_lanes(s, (group & !lost, free), (&ray.origin, &ray.d), t);
             for i in (0..LANES).filter(|i| lost >> i & 1 != 0) {
                 // Not met by the hit test after all: the scalar path.
-                let w = S::store(ray.weight)[i];
-                let c = self.scalar_lane((i, free), &lane_ray(i), None, (ray.depth, w));
-                (scalar.1.x[i], scalar.1.y[i], scalar.1.z[i]) = (c.x, c.y, c.z);
-                scalar.0 |= 1 << i;
+                self.lane_scalar::<S>((i, free), (ray, &lane_ray(i)), None, &mut scalar);
             }
             group &= !lost;
             if group == 0 {
@@ -310,6 +305,9 @@ impl Packet<'_, '_> {
                     next.d = select3::<S>(m, &d, &next.d);
                     next.weight = S::select(m, w, next.weight);
                     next.free |= go & from_eye;
+                    if plane {
+                        next.from = S::select(m, s.splat(k as f32), next.from);
+                    }
                     reflectivity = S::select(m, s.splat(r), reflectivity);
                     reflect |= go;
                 }
@@ -321,79 +319,45 @@ impl Packet<'_, '_> {
         ((color, reflectivity, reflect), next)
     }
 
-    /// Lane `i`'s ray `r`, a bounce at `depth` with path weight `weight`, by
-    /// the scalar path: `shade` from `hit` where known, else `trace`.
+    /// Lane `i` of `ray` (`r`) by [`Self::scalar_lane`], from `hit` where
+    /// known: its colour and bit go to `scalar`.
+    #[inline(always)]
+    fn lane_scalar<S: Simd>(
+        &self,
+        (i, free): (usize, u8),
+        (ray, r): (&Bounce<S::F>, &Ray),
+        hit: Option<Hit>,
+        scalar: &mut (u8, V8),
+    ) {
+        let w = S::store(ray.weight)[i];
+        let from = leaving::<S>(ray.from, i);
+        let c = self.scalar_lane((i, free), (r, from), hit, (ray.depth, w));
+        (scalar.1.x[i], scalar.1.y[i], scalar.1.z[i]) = (c.x, c.y, c.z);
+        scalar.0 |= 1 << i;
+    }
+
+    /// Lane `i`'s ray `r` (leaving plane `from`, if any), a bounce at `depth`
+    /// with path weight `weight`, by the scalar path: `shade` from `hit` where
+    /// known, else from the nearest hit (`trace`, but not testing `from`).
     fn scalar_lane(
         &self,
         (i, free): (usize, u8),
-        r: &Ray,
+        (r, from): (&Ray, Option<(usize, bool)>),
         hit: Option<Hit>,
         (depth, weight): (u32, f32),
     ) -> Vec3 {
         let (p, b) = (self.p, self.bound);
-        self.in_lane((i, free >> i & 1 != 0), |motion| match hit {
-            Some(h) => shade(p, r, Some(h), depth, weight, b, motion, None),
-            None => trace(p, r, depth, weight, b, motion),
+        self.in_lane((i, free >> i & 1 != 0), |motion| {
+            let hit = hit.or_else(|| p.closest_from(from, r, f32::INFINITY));
+            shade(p, r, hit, depth, weight, b, motion, None)
         })
     }
+}
 
-    /// Per lane of `live`, the nearest hit of its ray as `closest` finds it
-    /// (the planes, then inside the box around them the bounded objects in
-    /// order, each box tested with the nearest hit so far as its limit, a hit
-    /// taken only where nearer): the lanes that meet nothing (bits), and the
-    /// object per lane (as `f32`).
-    /// Beyond [`SCAN_AT_MOST`] bounded objects each lane walks the hierarchy
-    /// instead (`Prepared::closest`, the same hit).
-    #[inline(always)]
-    fn nearest_all<S: Simd>(&self, s: S, ray: &Bounce<S::F>, live: u8) -> (u8, S::F) {
-        let p = self.p;
-        if p.bounded.len() > SCAN_AT_MOST {
-            let (origin, dir) = (store3::<S>(&ray.origin), store3::<S>(&ray.d));
-            let (mut missed, mut which) = (!live, [0.0; LANES]);
-            for i in (0..LANES).filter(|i| live >> i & 1 != 0) {
-                let r = Ray {
-                    origin: origin.lane(i),
-                    dir: dir.lane(i),
-                };
-                match p.closest(&r, f32::INFINITY) {
-                    Some(h) => which[i] = h.object as f32,
-                    None => missed |= 1 << i,
-                }
-            }
-            return (missed, s.load(&which));
-        }
-        let inf = s.splat(f32::INFINITY);
-        let (mut best, mut which) = (inf, s.splat(0.0));
-        for &k in p.planes() {
-            let t = self.plane_hits(s, k, &ray.origin, &ray.d);
-            let take = S::lt(t, best);
-            best = S::select(take, t, best);
-            which = S::select(take, s.splat(k as f32), which);
-        }
-        let inv = recip(s, &ray.d);
-        let within = live & S::bits(box8(s, &p.group, &ray.origin, &inv, inf));
-        if within != 0 {
-            let within = s.mask(within);
-            // Eight objects at a time behind their chunk's hull: lanes that
-            // miss it before their nearest hit so far miss each of the eight
-            // (`Chunk::hull`).
-            for (run, chunk) in p.bounded.chunks(W).zip(p.wide.chunks()) {
-                let near = within & box8(s, chunk.hull(), &ray.origin, &inv, best);
-                if S::bits(near) == 0 {
-                    continue;
-                }
-                for &(k, ref b) in run {
-                    let inside = near & box8(s, b, &ray.origin, &inv, best);
-                    if S::bits(inside) == 0 {
-                        continue;
-                    }
-                    let h = hit8(s, p.geom(k), &ray.origin, &ray.d);
-                    let take = inside & S::lt(h, best);
-                    best = S::select(take, h, best);
-                    which = S::select(take, s.splat(k as f32), which);
-                }
-            }
-        }
-        (!S::bits(S::lt(best, inf)), which)
-    }
+/// The plane lane `i`'s ray leaves (`Bounce::from`), as
+/// `Prepared::closest_from` takes it: a plane's own rays do not test it.
+#[inline(always)]
+pub(super) fn leaving<S: Simd>(from: S::F, i: usize) -> Option<(usize, bool)> {
+    let f = S::store(from)[i];
+    (f >= 0.0).then_some((f as usize, false))
 }

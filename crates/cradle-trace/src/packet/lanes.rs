@@ -228,7 +228,8 @@ impl Packet<'_, '_> {
     ) -> S::M {
         if self.tiles.shadow_clear(self.p, (floor.object, li), x0, y) {
             let mut blocked = s.mask(0);
-            for &k in self.p.planes() {
+            // Not the floor itself (`Prepared::occluded_by_planes`).
+            for &k in self.p.planes().iter().filter(|&&k| k != floor.object) {
                 blocked = blocked | S::lt(self.plane_hits(s, k, start, to_light), dist);
             }
             return blocked;
@@ -280,7 +281,8 @@ impl Packet<'_, '_> {
             let inf = s.splat(f32::INFINITY);
             let inv = recip(s, &dir);
             let (mut best, mut which) = (inf, s.splat(0.0));
-            for &k in list {
+            // Not the floor itself (`Prepared::closest_among`).
+            for &k in list.iter().filter(|&&k| k != floor.object) {
                 let t = if matches!(self.p.scene.objects[k].shape, Shape::Plane { .. }) {
                     self.plane_hits(s, k, start, &dir)
                 } else {
@@ -310,6 +312,7 @@ impl Packet<'_, '_> {
             weight: s.splat(r),
             // Mirror rays of camera rays off the floor: free.
             free: 0xFF,
+            from: s.splat(floor.object as f32),
         };
         self.bounce(s, &mirror, on_floor, found)
     }

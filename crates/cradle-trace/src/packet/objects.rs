@@ -31,7 +31,7 @@ impl Packet<'_, '_> {
         want: u8,
     ) -> u8 {
         let p = self.p;
-        let mut out = self.planes_before(s, (start, dir), dist, want);
+        let mut out = self.planes_before(s, (object, start, dir), dist, want);
         let mut todo = want & !out;
         if todo == 0 {
             return out;

@@ -262,18 +262,19 @@ impl Packet<'_, '_> {
         inside & S::bits(blocks8(s, self.p.geom(k), start, dir, dist))
     }
 
-    /// The lanes of `want` (bits) whose rays from `start` along `dir` meet a
-    /// plane before `dist`.
+    /// The lanes of `want` (bits) whose rays from `start` on object `from`
+    /// along `dir` meet a plane (not `from` itself,
+    /// `Prepared::occluded_by_planes`) before `dist`.
     #[inline(always)]
     pub(super) fn planes_before<S: Simd>(
         &self,
         s: S,
-        (start, dir): (&L3<S::F>, &L3<S::F>),
+        (from, start, dir): (usize, &L3<S::F>, &L3<S::F>),
         dist: S::F,
         want: u8,
     ) -> u8 {
         let mut out = 0;
-        for &k in self.p.planes() {
+        for &k in self.p.planes().iter().filter(|&&k| k != from) {
             out |= want & S::bits(S::lt(self.plane_hits(s, k, start, dir), dist));
         }
         out
@@ -313,7 +314,7 @@ impl Packet<'_, '_> {
     ) -> u8 {
         let p = self.p;
         // The planes first: a hit before dist on any of them.
-        let mut out = self.planes_before(s, (start, dir), dist, want);
+        let mut out = self.planes_before(s, (plane, start, dir), dist, want);
         // inv = dir.recip(); the group box.
         let inv = recip(s, dir);
         let mut todo = want & !out & S::bits(box8(s, &p.group, start, &inv, dist));

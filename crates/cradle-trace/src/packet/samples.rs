@@ -24,6 +24,7 @@ impl Packet<'_, '_> {
             depth: 0,
             weight: [1.0; LANES],
             free: 0,
+            from: [-1.0; LANES],
         };
         let mut live = 0u8;
         for (i, &(x, y)) in at.iter().enumerate() {
