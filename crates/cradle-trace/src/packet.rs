@@ -174,7 +174,7 @@ impl Packet<'_, '_> {
     /// Traces pixels `x..x + 8` of row `y` into `span` (8 RGBA pixels) where
     /// the floor is the one plane their tile offers and the nearest hit
     /// ([`Self::floor`]): the lanes written (their cells: [`Self::marks`]).
-    #[inline]
+    #[inline(always)]
     pub(crate) fn run(&self, x: u32, y: u32, span: &mut [u8]) -> u8 {
         let mut others = Reaching::default();
         match self
