@@ -22,13 +22,14 @@ use crate::wide::W;
 const SCAN_AT_MOST: usize = 1024;
 
 impl Packet<'_, '_> {
-    /// Per lane of `live`, the nearest hit of its ray as `closest` finds it
-    /// (the planes, then inside the box around them the bounded objects in
+    /// Per lane of `live`, the nearest hit of its ray as `closest_from` finds
+    /// it (the planes but the one the lane's ray leaves, `Bounce::from`, then
+    /// inside the box around them the bounded objects in
     /// order, each box tested with the nearest hit so far as its limit, a hit
     /// taken only where nearer): the lanes that meet nothing (bits), and the
     /// object per lane (as `f32`).
     /// Beyond [`SCAN_AT_MOST`] bounded objects each lane walks the hierarchy
-    /// instead (`Prepared::closest`, the same hit).
+    /// instead (`Prepared::closest_from`, the same hit).
     #[inline(always)]
     pub(super) fn nearest_all<S: Simd>(&self, s: S, ray: &Bounce<S::F>, live: u8) -> (u8, S::F) {
         let p = self.p;

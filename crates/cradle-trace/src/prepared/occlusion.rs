@@ -17,8 +17,9 @@ impl Prepared<'_> {
     }
 
     /// [`Self::occluded`] for a shadow ray towards light `light` from a point of
-    /// object `from`: with shadow culling, from a plane only the objects whose
-    /// shadow can fall there are tested. The same answer either way.
+    /// object `from` (a plane's own rays do not test it): with shadow culling,
+    /// from a plane only the objects whose shadow can fall there are tested.
+    /// The same answer either way.
     #[must_use]
     pub fn occluded_towards(
         &self,
