@@ -6,6 +6,7 @@ use super::bvh::Bvh;
 use super::casters::{Casters, clear_of};
 use super::geometry::{Aabb, Cylinder, Ray, hit_plane, hit_sphere};
 use super::scene::{Scene, Shape};
+use super::shade::Phong;
 use super::shadow::Footprints;
 use super::wide::{WIDE_AT_MOST, WideBoxes};
 use glam::Vec3;
@@ -83,6 +84,8 @@ pub struct Prepared<'a> {
     /// The flat scene.
     pub scene: &'a Scene,
     geoms: Vec<Geom>,
+    /// Per object: its material's Phong exponent made ready (`None`: matt).
+    phong: Vec<Option<Phong>>,
     /// Per object: its box (planes: empty, never used).
     pub(crate) boxes: Vec<Aabb>,
     /// Per object: its slot in `footprints` if it is a plane.
@@ -137,6 +140,11 @@ impl<'a> Prepared<'a> {
             casters: None,
             bvh: None,
             geoms: scene.objects.iter().map(|o| Geom::new(&o.shape)).collect(),
+            phong: scene
+                .objects
+                .iter()
+                .map(|o| o.material.specular.map(Phong::new))
+                .collect(),
             wide: WideBoxes::new(bounded.iter().copied()),
             bounded,
             group,
@@ -147,6 +155,11 @@ impl<'a> Prepared<'a> {
     /// Object `i`'s shape with what its hit test needs.
     pub(crate) fn geom(&self, i: usize) -> &Geom {
         &self.geoms[i]
+    }
+
+    /// Object `i`'s Phong exponent made ready (`None`: matt).
+    pub(crate) fn phong(&self, i: usize) -> Option<Phong> {
+        self.phong[i]
     }
 
     /// Distance and outward normal of the ray's hit on object `i`, if any.

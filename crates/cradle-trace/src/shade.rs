@@ -86,14 +86,45 @@ pub(crate) fn whole(exponent: f32) -> Option<u32> {
     ((1..=10_000).contains(&n) && n as f32 == exponent).then_some(n)
 }
 
+/// A material's Phong exponent made ready for [`highlight`]: whole (by
+/// [`powi`]) or not, and the least `facing` whose highlight is kept.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Phong {
+    /// The exponent.
+    pub(crate) exponent: f32,
+    /// It as a whole number, where it is one ([`whole`]).
+    pub(crate) whole: Option<u32>,
+    /// `(2^-100)^(1 / exponent)`: below it the highlight, under 2^-100, is 0.
+    pub(crate) least: f32,
+}
+
+impl Phong {
+    /// Exponent `exponent` made ready.
+    #[must_use]
+    pub(crate) fn new(exponent: f32) -> Self {
+        let least = (2f64.powi(-100)).powf(1.0 / f64::from(exponent)) as f32;
+        Self {
+            exponent,
+            whole: whole(exponent),
+            least,
+        }
+    }
+}
+
 /// The Phong highlight `facing^exponent`: by [`powi`] for a whole-number
-/// exponent (vectorizable, the same bits in lanes), else `powf`.
+/// exponent (vectorizable, the same bits in lanes), else `powf`; 0 where
+/// `facing` is below `least` (the highlight would be below 2^-100, far under
+/// half an ulp of any lit colour). That cut keeps subnormal numbers out of the
+/// squarings: an operation on them takes a slow microcode path on x86 CPUs.
 #[inline]
 #[must_use]
-pub(crate) fn highlight(facing: f32, exponent: f32) -> f32 {
-    match whole(exponent) {
+pub(crate) fn highlight(facing: f32, phong: Phong) -> f32 {
+    if facing < phong.least {
+        return 0.0;
+    }
+    match phong.whole {
         Some(n) => powi(facing, n),
-        None => facing.powf(exponent),
+        None => facing.powf(phong.exponent),
     }
 }
 
@@ -202,11 +233,11 @@ pub(crate) fn shade(
             continue;
         }
         color += base * light_color * lambert;
-        if let Some(exponent) = m.specular {
+        if let Some(phong) = p.phong(hit.object) {
             let mirrored = 2.0 * lambert * n - to_light;
             let facing = mirrored.dot(-ray.dir);
             if facing > 0.0 {
-                color += light_color * highlight(facing, exponent);
+                color += light_color * highlight(facing, phong);
             }
         }
     }

@@ -13,7 +13,7 @@ use super::bounce::{Bounce, Bounces};
 use super::occlusion::{box8, hit8, plane8, recip};
 use super::{Floor, L3, LANES, Packet, Surface, f8, lanes, splat3};
 use crate::scene::{Light, Material, Shape};
-use crate::shade::{BAILOUT, base_color, powi, whole};
+use crate::shade::{BAILOUT, base_color, highlight, powi};
 use crate::simd::Simd;
 use glam::Vec3;
 
@@ -36,6 +36,15 @@ pub(super) enum Met<'m> {
 }
 
 impl Met<'_> {
+    /// The object met.
+    #[inline(always)]
+    fn object(&self) -> usize {
+        match *self {
+            Met::Floor(f) => f.object,
+            Met::Object { object, .. } => object,
+        }
+    }
+
     #[inline(always)]
     fn material(&self) -> &Material {
         match *self {
@@ -149,21 +158,25 @@ impl Packet<'_, '_> {
                 y: add(color.y, b.y, lc.y),
                 z: add(color.z, b.z, lc.z),
             };
-            if let Some(exponent) = m.specular {
+            if let Some(phong) = p.phong(met.object()) {
                 // mirrored = 2.0 * lambert * n - to_light; facing = mirrored.dot(-dir)
                 let mirrored = nn.scale(k(2.0) * lambert).sub(&to_light);
                 let facing = mirrored.dot(&d.neg());
                 let shiny = lit & S::lt(k(0.0), facing);
                 let on = S::bits(shiny);
                 if on != 0 {
-                    // color += light_color * highlight(facing, exponent)
-                    let pk = if let Some(n) = whole(exponent) {
-                        powi(facing, n)
+                    // color += light_color * highlight(facing, phong): 0 below
+                    // `least`; the lanes not kept take the power of 1, so no
+                    // lane squares a subnormal number.
+                    let pk = if let Some(n) = phong.whole {
+                        let kept = shiny & S::le(k(phong.least), facing);
+                        let x = S::select(kept, facing, k(1.0));
+                        S::select(kept, powi(x, n), k(0.0))
                     } else {
                         let f = S::store(facing);
                         s.load(&f8(|i| {
                             if on >> i & 1 != 0 {
-                                f[i].powf(exponent)
+                                highlight(f[i], phong)
                             } else {
                                 0.0
                             }
