@@ -43,6 +43,7 @@ use std::cell::{Cell, RefCell};
 pub const LANES: usize = 8;
 
 mod bounce;
+mod hits;
 #[cfg(test)]
 mod lane_tests;
 mod lanes;
@@ -317,8 +318,13 @@ impl Packet<'_, '_> {
         // closest_among, after the plane: each other candidate through its box
         // with the nearest hit so far as the limit. Lanes that meet one first
         // are traced on from there (`bounce`).
-        let (front, which) = if others.is_empty() {
-            (0, k(0.0))
+        let (front, found) = if others.is_empty() {
+            let none = nearest::Found {
+                missed: 0,
+                which: k(0.0),
+                at: None,
+            };
+            (0, none)
         } else {
             self.nearest_of(s, others, &d, t)
         };
@@ -355,7 +361,7 @@ impl Packet<'_, '_> {
                 free: 0,
                 from: k(-1.0),
             };
-            let cradle = self.bounce(s, &ray, front, Some((0, which)));
+            let cradle = self.bounce(s, &ray, front, Some(found));
             color = vec::select3::<S>(s.mask(front), &cradle, &color);
         }
         let color = store3::<S>(&color);

@@ -1,5 +1,7 @@
-//! Packets in tracked frames note the motion cells and segments the scalar path
-//! notes.
+//! Packets against the scalar path: in tracked frames they note the motion
+//! cells and segments it notes, and they render its bytes where a mirror ball
+//! is checkered, where a plane's own rays would meet it again, and past the
+//! scan limit of the bounces' nearest hits.
 
 use super::{Frame, RenderOptions};
 use crate::motion::Seg;
@@ -257,4 +259,66 @@ fn no_renderer_tests_a_planes_own_rays() {
         .image(false)
         .0;
     assert!(fast == full, "packets and culling keep the rule");
+}
+
+#[test]
+fn packets_equal_the_reference_past_the_scan_limit() {
+    // A mirror ball on a floor, and above the eye, out of view, 1,122 small
+    // balls that it mirrors: past `SCAN_AT_MOST` bounded objects, each lane of
+    // a bounce walks the hierarchy, and the shading tests the object met again
+    // (`hit_normal`), not the scan's `t`.
+    let ball = Material {
+        color: Vec3::new(0.5, 0.5, 0.55),
+        specular: Some(120.0),
+        reflective: 0.6,
+        checker: None,
+    };
+    let floor = Material {
+        checker: Some((Vec3::new(0.2, 0.1, 0.1), 0.05)),
+        reflective: 0.1,
+        ..ball
+    };
+    let at = |centre: Vec3, radius: f32| Object {
+        shape: Shape::Sphere { centre, radius },
+        material: ball,
+        moving: false,
+    };
+    let mut objects = vec![
+        Object {
+            shape: Shape::Plane {
+                point: Vec3::ZERO,
+                normal: Vec3::Y,
+            },
+            material: floor,
+            moving: false,
+        },
+        at(Vec3::new(0.0, 0.15, 0.0), 0.15),
+    ];
+    for (i, j) in (0..33).flat_map(|i| (0..34).map(move |j| (i, j))) {
+        let (x, z) = (i as f32 * 0.03 - 0.5, j as f32 * 0.03 - 0.8);
+        objects.push(at(Vec3::new(x, 1.2 + (i + j) as f32 % 5.0 * 0.1, z), 0.01));
+    }
+    let scene = Scene {
+        objects,
+        lights: vec![Light::Point {
+            position: Vec3::new(-0.5, 1.0, 0.8),
+            color: Vec3::ONE,
+        }],
+        camera: Camera {
+            position: Vec3::new(0.0, 0.5, 1.0),
+            look_at: Vec3::ZERO,
+            fov_deg: 40.0,
+        },
+        size: (72, 40),
+        max_depth: 3,
+        samples: 1,
+        ..Scene::default()
+    };
+    let full = Frame::new(&scene, RenderOptions::FULL, false)
+        .image(false)
+        .0;
+    let fast = Frame::new(&scene, RenderOptions::FAST, false)
+        .image(false)
+        .0;
+    assert!(fast == full, "packets past the scan limit");
 }

@@ -8,9 +8,11 @@
 //! that reflect. Then the levels are blended from the deepest up,
 //! `color * (1 - r) + reflected * r` per lane, as the recursion returns.
 //!
-//! Each group starts its shading from the object's hit test over the lanes
-//! with its normal (`hit_normal`, `Prepared::hit_object` per lane). A lane that
-//! test were not to meet (it met it when the nearest was found) is traced by the
+//! Each group starts its shading from where the nearest-hit scan met the object
+//! (`Found::at`: the `t` and the part of it) with the normal there
+//! (`normal_at`; `Prepared::hit_object`'s per lane). Where the scan gave no `t`
+//! (each lane walked the hierarchy), the object's hit test over the lanes
+//! gives it (`hit_normal`); a lane that test were not to meet is traced by the
 //! scalar path instead (`shade` from `Prepared::closest_from`).
 
 #![expect(
@@ -18,10 +20,11 @@
     reason = "the lane code is inlined into each entry point, so the AVX2 one compiles it for AVX2"
 )]
 
+use super::hits::{hit_normal, normal_at};
 use super::lanes::Met;
-use super::occlusion::hit_normal;
+use super::nearest::Found;
 use super::vec::select3;
-use super::{F8, L3, LANES, Packet, Surface, V8, lanes_with, load3, splat3, store3};
+use super::{F8, L3, LANES, Packet, Surface, V8, load3, splat3, store3};
 use crate::geometry::Ray;
 use crate::prepared::Hit;
 use crate::scene::Shape;
@@ -75,12 +78,19 @@ pub(super) struct Bounce8 {
 /// compiled for AVX2. Lane values cross the call as arrays.
 pub(super) trait Bounces: Simd {
     /// [`Packet::bounce_lanes`] of the rays `first`.
-    fn bounce(self, pk: &Packet<'_, '_>, first: &Bounce8, live: u8, found: Option<(u8, F8)>) -> V8;
+    fn bounce(self, pk: &Packet<'_, '_>, first: &Bounce8, live: u8, found: Option<Found<F8>>)
+    -> V8;
 }
 
 impl Bounces for Portable {
     #[inline(never)]
-    fn bounce(self, pk: &Packet<'_, '_>, first: &Bounce8, live: u8, found: Option<(u8, F8)>) -> V8 {
+    fn bounce(
+        self,
+        pk: &Packet<'_, '_>,
+        first: &Bounce8,
+        live: u8,
+        found: Option<Found<F8>>,
+    ) -> V8 {
         pk.bounce_arrays(self, first, live, found)
     }
 }
@@ -88,7 +98,13 @@ impl Bounces for Portable {
 #[cfg(target_arch = "x86_64")]
 impl Bounces for Avx2 {
     #[inline(never)]
-    fn bounce(self, pk: &Packet<'_, '_>, first: &Bounce8, live: u8, found: Option<(u8, F8)>) -> V8 {
+    fn bounce(
+        self,
+        pk: &Packet<'_, '_>,
+        first: &Bounce8,
+        live: u8,
+        found: Option<Found<F8>>,
+    ) -> V8 {
         // SAFETY: the token proves the CPU has AVX2.
         #[expect(unsafe_code, reason = "the call into the AVX2 build")]
         unsafe {
@@ -105,7 +121,7 @@ fn bounce_avx2(
     pk: &Packet<'_, '_>,
     first: &Bounce8,
     live: u8,
-    found: Option<(u8, F8)>,
+    found: Option<Found<F8>>,
 ) -> V8 {
     pk.bounce_arrays(s, first, live, found)
 }
@@ -118,7 +134,7 @@ impl Packet<'_, '_> {
         s: S,
         first: &Bounce<S::F>,
         live: u8,
-        found: Option<(u8, S::F)>,
+        found: Option<Found<S::F>>,
     ) -> L3<S::F> {
         let arrays = Bounce8 {
             origin: store3::<S>(&first.origin),
@@ -130,15 +146,15 @@ impl Packet<'_, '_> {
         };
         // (No closure here: one left as a call is not compiled for AVX2.)
         let mut known = None;
-        if let Some((missed, which)) = found {
-            known = Some((missed, S::store(which)));
+        if let Some(f) = found {
+            known = Some(f.store::<S>());
         }
         load3(s, &s.bounce(self, &arrays, live, known))
     }
 
     /// [`Self::bounce_lanes`] from and to arrays.
     #[inline(always)]
-    fn bounce_arrays<S: Simd>(&self, s: S, b: &Bounce8, live: u8, found: Option<(u8, F8)>) -> V8 {
+    fn bounce_arrays<S: Simd>(&self, s: S, b: &Bounce8, live: u8, found: Option<Found<F8>>) -> V8 {
         let first = Bounce {
             origin: load3(s, &b.origin),
             d: load3(s, &b.d),
@@ -148,8 +164,8 @@ impl Packet<'_, '_> {
             from: s.load(&b.from),
         };
         let mut known = None;
-        if let Some((missed, which)) = found {
-            known = Some((missed, s.load(&which)));
+        if let Some(f) = found {
+            known = Some(f.load(s));
         }
         store3::<S>(&self.bounce_lanes(s, first, live, known))
     }
@@ -164,7 +180,7 @@ impl Packet<'_, '_> {
         s: S,
         first: Bounce<S::F>,
         live: u8,
-        found: Option<(u8, S::F)>,
+        found: Option<Found<S::F>>,
     ) -> L3<S::F> {
         // `None`s: only their tags are written (17 whole levels of zeros cost
         // 85 stores of a register a call).
@@ -172,11 +188,11 @@ impl Packet<'_, '_> {
         let mut n = 0;
         let (mut ray, mut live, mut found) = (first, live, found);
         loop {
-            let (missed, which) = match found.take() {
+            let f = match found.take() {
                 Some(f) => f,
                 None => self.nearest_all(s, &ray, live),
             };
-            let (level, next) = self.level(s, &ray, live & !missed, live & missed, which);
+            let (level, next) = self.level(s, &ray, (live & !f.missed, live & f.missed), &f);
             levels[n] = Some(level);
             n += 1;
             if level.2 == 0 || n == LEVELS {
@@ -196,23 +212,22 @@ impl Packet<'_, '_> {
         acc
     }
 
-    /// One level: the lanes of `hitting` met object `which` (per lane), those
-    /// of `missed` nothing. Their local colours, reflectivities and the lanes
+    /// One level: the lanes of `hitting` met what `found` says, those of
+    /// `missed` nothing. Their local colours, reflectivities and the lanes
     /// that reflect, and the mirror rays of those.
     #[inline(always)]
     fn level<S: Simd>(
         &self,
         s: S,
         ray: &Bounce<S::F>,
-        hitting: u8,
-        missed: u8,
-        which: S::F,
+        (hitting, missed): (u8, u8),
+        found: &Found<S::F>,
     ) -> (Level<S::F>, Bounce<S::F>) {
         let p = self.p;
         let (origin, dir, which) = (
             store3::<S>(&ray.origin),
             store3::<S>(&ray.d),
-            S::store(which),
+            S::store(found.which),
         );
         let lane_ray = |i: usize| Ray {
             origin: origin.lane(i),
@@ -243,7 +258,9 @@ impl Packet<'_, '_> {
         while todo != 0 {
             let first = which[todo.trailing_zeros() as usize];
             let k = first as usize;
-            let mut group = lanes_with(&which, &first, todo);
+            // The lanes of `todo` on the same object: which == first.
+            let same = S::le(found.which, s.splat(first)) & S::le(s.splat(first), found.which);
+            let mut group = todo & S::bits(same);
             todo &= !group;
             if group.count_ones() < SHARED {
                 // A lone lane: the scalar `shade` from its hit (or `trace`).
@@ -254,9 +271,9 @@ impl Packet<'_, '_> {
                 }
                 continue;
             }
-            // Object k's hit test over the lanes (the same `t`), and its normal
-            // turned to face the ray (`Hit::facing`: inside where n.dot(dir) > 0).
-            let (t, n) = hit_normal(s, p.geom(k), &ray.origin, &ray.d);
+            // Where the lanes meet object k, and its normal turned to face the
+            // ray (`Hit::facing`: inside where n.dot(dir) > 0).
+            let (t, n) = self.meeting(s, k, ray, found);
             let inside = S::lt(s.splat(0.0), n.dot(&ray.d));
             let nn = select3::<S>(inside, &n.neg(), &n);
             let outside = !S::bits(inside);
@@ -317,6 +334,23 @@ impl Packet<'_, '_> {
             color = select3::<S>(s.mask(scalar.0), &load3(s, &scalar.1), &color);
         }
         ((color, reflectivity, reflect), next)
+    }
+
+    /// Where the lanes of `ray` meet object `k` and its outward normal there:
+    /// as `found` says, else by its hit test over the lanes (the same `t`).
+    #[inline(always)]
+    fn meeting<S: Simd>(
+        &self,
+        s: S,
+        k: usize,
+        ray: &Bounce<S::F>,
+        found: &Found<S::F>,
+    ) -> (S::F, L3<S::F>) {
+        let g = self.p.geom(k);
+        match found.at {
+            Some(at) => (at.0, normal_at(s, g, (&ray.origin, &ray.d), at)),
+            None => hit_normal(s, g, &ray.origin, &ray.d),
+        }
     }
 
     /// Lane `i` of `ray` (`r`) by [`Self::scalar_lane`], from `hit` where

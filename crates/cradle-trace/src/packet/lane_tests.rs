@@ -3,8 +3,8 @@
 //! (zero direction components, infinite inverses), from inside, grazing, along
 //! a cylinder's axis (caps only) and across it.
 
+use super::hits::{blocks8, box8};
 use super::lookup::lookup;
-use super::occlusion::{blocks8, box8};
 use super::{F8, LANES, V8, load3};
 use crate::geometry::{Aabb, Cylinder, Ray, hit_sphere};
 use crate::prepared::Geom;
@@ -267,77 +267,76 @@ fn checker_lanes_pick_the_scalar_colours() {
     }
 }
 
-/// `x^n` by `powi` over lanes of build `s`.
-fn powi_lanes<S: Simd>(s: S, x: &F8, n: u32) -> F8 {
-    S::store(crate::shade::powi(s.load(x), n))
-}
-
+/// The lanes' nearest hit on a shape and the normal there (`hit_part`, then
+/// `normal_at`, as a bounce takes them from its nearest-hit scan), and
+/// `hit_normal` (without the scan), are the scalar `Prepared::hit_object`'s
+/// bit for bit, where it meets the shape; +inf where it does not.
 #[test]
-fn whole_exponents_are_powers_by_squaring_in_every_build() {
-    use crate::shade::{Phong, highlight, powi, whole};
-    assert_eq!(
-        [0.0, 0.5, 1.0, 120.0, 120.5, 10_000.0, 10_001.0, f32::NAN].map(whole),
-        [
-            None,
-            None,
-            Some(1),
-            Some(120),
-            None,
-            Some(10_000),
-            None,
-            None
-        ]
-    );
-    let mut rng = Lcg(17);
-    for n in [1, 2, 3, 7, 20, 40, 120, 1000, 4097, 10_000] {
-        for _ in 0..50 {
-            let x: F8 = std::array::from_fn(|_| rng.f().abs());
-            for got in each_build!(|s| powi_lanes(s, &x, n)) {
-                for (g, &x) in got.iter().zip(&x) {
-                    // Lanes: the scalar bits.
-                    assert_eq!(g.to_bits(), powi(x, n).to_bits(), "{x}^{n}");
-                    // Against f64: each squaring at most doubles the relative
-                    // error and adds one rounding, so below n roundings of
-                    // 2^-24 (plus the smallest normal, for underflow).
-                    let want = f64::from(x).powi(n as i32);
-                    let tol = f64::from(n) * 2f64.powi(-24) * want + 1.2e-38;
-                    assert!(
-                        (f64::from(*g) - want).abs() <= tol,
-                        "{x}^{n}: {g} vs {want}"
-                    );
+fn lane_hits_and_normals_are_the_scalar_ones() {
+    let mut rng = Lcg(11);
+    let centre = Vec3::new(0.02, 0.09, -0.01);
+    let (a, b) = (Vec3::new(0.0, 0.25, -0.05), Vec3::new(0.01, 0.11, 0.0));
+    let shapes = [
+        Geom::Sphere {
+            centre,
+            radius: 0.02,
+        },
+        Geom::Cylinder(Cylinder::new(a, b, 0.0006)),
+        Geom::Cylinder(Cylinder::new(b, b + Vec3::X * 0.1, 0.02)),
+    ];
+    let (mut hits, mut caps) = (0, 0);
+    for round in 0..600 {
+        let target = [centre, (a + b) * 0.5, b + Vec3::X * 0.05][round % 3];
+        let r = rays(&mut rng, target, round);
+        let (o, d, _) = lanes_of(&r);
+        for g in &shapes {
+            let want: [_; LANES] = std::array::from_fn(|i| match *g {
+                Geom::Sphere { centre, radius } => {
+                    hit_sphere(&r[i], centre, radius).map(|t| (t, (r[i].at(t) - centre) / radius))
+                }
+                Geom::Cylinder(c) => c.hit(&r[i]),
+                Geom::Plane { .. } => unreachable!(),
+            });
+            for (t, part, n, t2, n2) in each_build!(|s| hit_lanes(s, g, &o, &d)) {
+                for (i, w) in want.iter().enumerate() {
+                    assert_eq!(t[i].to_bits(), t2[i].to_bits());
+                    let Some((wt, wn)) = *w else {
+                        assert_eq!(t[i], f32::INFINITY, "{:?}", r[i]);
+                        continue;
+                    };
+                    assert_eq!(t[i].to_bits(), wt.to_bits(), "{:?}", r[i]);
+                    for got in [n.lane(i), n2.lane(i)] {
+                        assert_eq!(
+                            got.to_array().map(f32::to_bits),
+                            wn.to_array().map(f32::to_bits)
+                        );
+                    }
+                    hits += 1;
+                    caps += u32::from(part[i] > 0.0);
                 }
             }
         }
     }
-    assert_eq!(highlight(0.5, Phong::new(2.5)), 0.5f32.powf(2.5));
+    // Many hits, and among them the caps of the wide cylinder.
+    assert!(hits > 2000 && caps > 50, "{hits} hits, {caps} on caps");
 }
 
-/// A highlight is 0 below the least `facing` kept, whose power is 2^-100
-/// (within 0.2%: `least` is rounded to `f32`, an error of at most 2^-24 that
-/// the exponent multiplies, up to 10,000 times, so at most 0.06%); from
-/// `least` up it is the power, a normal number, so no squaring before it met a
-/// subnormal one (each is at least the result, `facing` being at most 1).
-#[test]
-fn highlights_below_2_to_the_minus_100_are_cut() {
-    use crate::shade::{Phong, highlight, powi};
-    for e in [
-        1.0, 2.0, 2.5, 7.0, 20.0, 40.0, 120.0, 1000.0, 4097.0, 10_000.0,
-    ] {
-        let phong = Phong::new(e);
-        let least = phong.least;
-        let ratio = f64::from(least).powf(f64::from(e)) / 2f64.powi(-100);
-        assert!(
-            (ratio - 1.0).abs() < 2e-3,
-            "{e}: least^e is {ratio} x 2^-100"
-        );
-        let below = f32::from_bits(least.to_bits() - 1);
-        assert_eq!(highlight(below, phong), 0.0, "{e}");
-        assert_eq!(highlight(0.0, phong), 0.0, "{e}");
-        let kept = highlight(least, phong);
-        assert!(kept.is_normal() && kept >= 2f32.powi(-101), "{e}: {kept}");
-        if let Some(n) = phong.whole {
-            assert_eq!(kept.to_bits(), powi(least, n).to_bits(), "{e}");
-            assert_eq!(highlight(0.75, phong).to_bits(), powi(0.75f32, n).to_bits());
-        }
-    }
+/// Per lane of build `s`: `hit_part`'s `t` and part, `normal_at` there, and
+/// `hit_normal`'s `t` and normal.
+fn hit_lanes<S: Simd>(s: S, g: &Geom, o: &V8, d: &V8) -> (F8, F8, V8, F8, V8) {
+    use super::hits::{hit_normal, hit_part, normal_at};
+    use super::store3;
+    let (o, d) = (load3(s, o), load3(s, d));
+    let (t, part) = hit_part(s, g, &o, &d);
+    let n = normal_at(s, g, (&o, &d), (t, part));
+    let (t2, n2) = hit_normal(s, g, &o, &d);
+    (
+        S::store(t),
+        S::store(part),
+        store3::<S>(&n),
+        S::store(t2),
+        store3::<S>(&n2),
+    )
 }
+
+mod highlights;

@@ -9,11 +9,46 @@
 )]
 
 use super::bounce::{Bounce, leaving};
-use super::occlusion::{box8, hit8, recip};
-use super::{LANES, Packet, store3};
+use super::hits::{box8, hit_part, recip};
+use super::{F8, LANES, Packet, store3};
 use crate::geometry::Ray;
 use crate::simd::Simd;
 use crate::wide::W;
+
+/// The nearest hits of a level's lanes: the lanes that meet nothing (bits),
+/// the object each other lane meets (its index as `f32`), and where the scan
+/// over the lanes found them, where (`t`) and on which part of it
+/// (`hits::hit_part`): the shading then need not test it again.
+#[derive(Clone, Copy)]
+pub(super) struct Found<F> {
+    pub(super) missed: u8,
+    pub(super) which: F,
+    pub(super) at: Option<(F, F)>,
+}
+
+impl<F: Copy> Found<F> {
+    /// The lanes as arrays, to cross a call.
+    #[inline(always)]
+    pub(super) fn store<S: Simd<F = F>>(&self) -> Found<F8> {
+        Found {
+            missed: self.missed,
+            which: S::store(self.which),
+            at: self.at.map(|(t, part)| (S::store(t), S::store(part))),
+        }
+    }
+}
+
+impl Found<F8> {
+    /// The arrays back as lanes.
+    #[inline(always)]
+    pub(super) fn load<S: Simd>(&self, s: S) -> Found<S::F> {
+        Found {
+            missed: self.missed,
+            which: s.load(&self.which),
+            at: self.at.map(|(t, part)| (s.load(&t), s.load(&part))),
+        }
+    }
+}
 
 /// Up to this many bounded objects the lanes' nearest hit scans the boxes over
 /// the lanes (eight at a time behind their chunk's hull); past it each lane
@@ -26,12 +61,12 @@ impl Packet<'_, '_> {
     /// it (the planes but the one the lane's ray leaves, `Bounce::from`, then
     /// inside the box around them the bounded objects in
     /// order, each box tested with the nearest hit so far as its limit, a hit
-    /// taken only where nearer): the lanes that meet nothing (bits), and the
-    /// object per lane (as `f32`).
+    /// taken only where nearer), as [`Found`].
     /// Beyond [`SCAN_AT_MOST`] bounded objects each lane walks the hierarchy
-    /// instead (`Prepared::closest_from`, the same hit).
+    /// instead (`Prepared::closest_from`, the same hit; `Found::at` then
+    /// unknown).
     #[inline(always)]
-    pub(super) fn nearest_all<S: Simd>(&self, s: S, ray: &Bounce<S::F>, live: u8) -> (u8, S::F) {
+    pub(super) fn nearest_all<S: Simd>(&self, s: S, ray: &Bounce<S::F>, live: u8) -> Found<S::F> {
         let p = self.p;
         if p.bounded.len() > SCAN_AT_MOST {
             let (origin, dir) = (store3::<S>(&ray.origin), store3::<S>(&ray.d));
@@ -46,10 +81,14 @@ impl Packet<'_, '_> {
                     None => missed |= 1 << i,
                 }
             }
-            return (missed, s.load(&which));
+            return Found {
+                missed,
+                which: s.load(&which),
+                at: None,
+            };
         }
         let inf = s.splat(f32::INFINITY);
-        let (mut best, mut which) = (inf, s.splat(0.0));
+        let (mut best, mut which, mut part) = (inf, s.splat(0.0), s.splat(0.0));
         for &k in p.planes() {
             let t = self.plane_hits(s, k, &ray.origin, &ray.d);
             // Not the plane the lane's ray leaves.
@@ -75,13 +114,18 @@ impl Packet<'_, '_> {
                     if S::bits(inside) == 0 {
                         continue;
                     }
-                    let h = hit8(s, p.geom(k), &ray.origin, &ray.d);
+                    let (h, at) = hit_part(s, p.geom(k), &ray.origin, &ray.d);
                     let take = inside & S::lt(h, best);
                     best = S::select(take, h, best);
                     which = S::select(take, s.splat(k as f32), which);
+                    part = S::select(take, at, part);
                 }
             }
         }
-        (!S::bits(S::lt(best, inf)), which)
+        Found {
+            missed: !S::bits(S::lt(best, inf)),
+            which,
+            at: Some((best, part)),
+        }
     }
 }

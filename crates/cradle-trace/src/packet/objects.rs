@@ -7,7 +7,8 @@
     reason = "the lane code is inlined into each entry point, so the AVX2 one compiles it for AVX2"
 )]
 
-use super::occlusion::{Rays, recip};
+use super::hits::recip;
+use super::occlusion::Rays;
 use super::{L3, LANES, Packet, lanes_with, splat3};
 use crate::casters::MARGIN;
 use crate::prepared::Geom;
