@@ -9,6 +9,14 @@ use crate::retrace::RowMotion;
 use crate::scene::{Camera, Light, Material, Object, Scene, Shape};
 use glam::Vec3;
 
+/// The packets and culling (`RenderOptions::FAST`) render the reference's
+/// bytes (`RenderOptions::FULL`) of `scene`.
+fn assert_fast_is_full(scene: &Scene, what: &str) {
+    let fast = Frame::new(scene, RenderOptions::FAST, false).image(false).0;
+    let full = Frame::new(scene, RenderOptions::FULL, false).image(false).0;
+    assert!(fast == full, "{what}");
+}
+
 #[test]
 fn packets_note_the_same_motion_cells_as_the_scalar_path() {
     // A reflective, checkered floor, a moving mirror ball and a moving
@@ -168,13 +176,7 @@ fn packets_equal_the_reference_with_a_checkered_mirror_ball() {
         adaptive: None,
         motion_bounds: None,
     };
-    let fast = Frame::new(&scene, RenderOptions::FAST, false)
-        .image(false)
-        .0;
-    let full = Frame::new(&scene, RenderOptions::FULL, false)
-        .image(false)
-        .0;
-    assert!(fast == full, "the same picture");
+    assert_fast_is_full(&scene, "the same picture");
 }
 
 #[test]
@@ -252,13 +254,7 @@ fn no_renderer_tests_a_planes_own_rays() {
         );
     }
     assert!(again > 0, "no mirror ray meets its own floor");
-    let full = Frame::new(&scene, RenderOptions::FULL, false)
-        .image(false)
-        .0;
-    let fast = Frame::new(&scene, RenderOptions::FAST, false)
-        .image(false)
-        .0;
-    assert!(fast == full, "packets and culling keep the rule");
+    assert_fast_is_full(&scene, "packets and culling keep the rule");
 }
 
 #[test]
@@ -314,11 +310,5 @@ fn packets_equal_the_reference_past_the_scan_limit() {
         samples: 1,
         ..Scene::default()
     };
-    let full = Frame::new(&scene, RenderOptions::FULL, false)
-        .image(false)
-        .0;
-    let fast = Frame::new(&scene, RenderOptions::FAST, false)
-        .image(false)
-        .0;
-    assert!(fast == full, "packets past the scan limit");
+    assert_fast_is_full(&scene, "packets past the scan limit");
 }

@@ -11,7 +11,7 @@
 
 use super::bounce::{Bounce, Bounces};
 use super::hits::{box8, hit_part, plane8, recip};
-use super::nearest::Found;
+use super::nearest::Nearest;
 use super::{Floor, L3, LANES, Packet, Surface, f8, lanes, splat3};
 use crate::scene::{Light, Material, Shape};
 use crate::shade::{BAILOUT, base_color, highlight, powi};
@@ -294,30 +294,22 @@ impl Packet<'_, '_> {
         if let Some(list) = self.tiles.mirror_at(floor.object, x0, y) {
             let inf = s.splat(f32::INFINITY);
             let inv = recip(s, &dir);
-            let (mut best, mut which, mut part) = (inf, s.splat(0.0), s.splat(0.0));
+            let mut near = Nearest::before(s, inf);
             // Not the floor itself (`Prepared::closest_among`).
             for &k in list.iter().filter(|&&k| k != floor.object) {
-                let (t, at) = if matches!(self.p.scene.objects[k].shape, Shape::Plane { .. }) {
-                    (self.plane_hits(s, k, start, &dir), s.splat(0.0))
-                } else {
-                    let inside = box8(s, &self.p.boxes[k], start, &inv, best);
-                    if S::bits(inside) & on_floor == 0 {
-                        continue;
-                    }
-                    let (h, at) = hit_part(s, self.p.geom(k), start, &dir);
-                    (S::select(inside, h, inf), at)
-                };
-                let take = S::lt(t, best);
-                best = S::select(take, t, best);
-                which = S::select(take, s.splat(k as f32), which);
-                part = S::select(take, at, part);
+                if matches!(self.p.scene.objects[k].shape, Shape::Plane { .. }) {
+                    let t = self.plane_hits(s, k, start, &dir);
+                    near.offer(s, s.mask(0xFF), (t, s.splat(0.0)), k);
+                    continue;
+                }
+                let inside = box8(s, &self.p.boxes[k], start, &inv, near.best);
+                if S::bits(inside) & on_floor == 0 {
+                    continue;
+                }
+                near.offer(s, inside, hit_part(s, self.p.geom(k), start, &dir), k);
             }
-            missed = !S::bits(S::lt(best, inf));
-            found = Some(Found {
-                missed,
-                which,
-                at: Some((best, part)),
-            });
+            missed = !S::bits(S::lt(near.best, inf));
+            found = Some(near.found(missed));
         }
         if on_floor & !missed == 0 && self.motion.is_none() {
             // Every lane sees the background, and there is nothing to note.

@@ -50,6 +50,54 @@ impl Found<F8> {
     }
 }
 
+/// A scan's nearest hit so far per lane: where, the object (its index as
+/// `f32`) and the part of it (`hits::hit_part`; 0 for a plane), which change
+/// together.
+#[derive(Clone, Copy)]
+pub(super) struct Nearest<F> {
+    pub(super) best: F,
+    which: F,
+    part: F,
+}
+
+impl<F: Copy> Nearest<F> {
+    /// Nothing met before `limit` yet.
+    #[inline(always)]
+    pub(super) fn before<S: Simd<F = F>>(s: S, limit: F) -> Self {
+        Self {
+            best: limit,
+            which: s.splat(0.0),
+            part: s.splat(0.0),
+        }
+    }
+
+    /// Object `k`, met at `t` on part `part`, where nearer than the nearest so
+    /// far in the lanes of `offered`.
+    #[inline(always)]
+    pub(super) fn offer<S: Simd<F = F>>(
+        &mut self,
+        s: S,
+        offered: S::M,
+        (t, part): (F, F),
+        k: usize,
+    ) {
+        let take = offered & S::lt(t, self.best);
+        self.best = S::select(take, t, self.best);
+        self.which = S::select(take, s.splat(k as f32), self.which);
+        self.part = S::select(take, part, self.part);
+    }
+
+    /// As [`Found`], the lanes of `missed` meeting nothing.
+    #[inline(always)]
+    pub(super) fn found(self, missed: u8) -> Found<F> {
+        Found {
+            missed,
+            which: self.which,
+            at: Some((self.best, self.part)),
+        }
+    }
+}
+
 /// Up to this many bounded objects the lanes' nearest hit scans the boxes over
 /// the lanes (eight at a time behind their chunk's hull); past it each lane
 /// walks the hierarchy. Measured with the hulls: 200 balls (612 objects) cost
@@ -88,14 +136,12 @@ impl Packet<'_, '_> {
             };
         }
         let inf = s.splat(f32::INFINITY);
-        let (mut best, mut which, mut part) = (inf, s.splat(0.0), s.splat(0.0));
+        let mut near = Nearest::before(s, inf);
         for &k in p.planes() {
             let t = self.plane_hits(s, k, &ray.origin, &ray.d);
             // Not the plane the lane's ray leaves.
             let own = S::le(ray.from, s.splat(k as f32)) & S::le(s.splat(k as f32), ray.from);
-            let take = S::lt(t, best) & !own;
-            best = S::select(take, t, best);
-            which = S::select(take, s.splat(k as f32), which);
+            near.offer(s, !own, (t, s.splat(0.0)), k);
         }
         let inv = recip(s, &ray.d);
         let within = live & S::bits(box8(s, &p.group, &ray.origin, &inv, inf));
@@ -105,27 +151,19 @@ impl Packet<'_, '_> {
             // miss it before their nearest hit so far miss each of the eight
             // (`Chunk::hull`).
             for (run, chunk) in p.bounded.chunks(W).zip(p.wide.chunks()) {
-                let near = within & box8(s, chunk.hull(), &ray.origin, &inv, best);
-                if S::bits(near) == 0 {
+                let hull = within & box8(s, chunk.hull(), &ray.origin, &inv, near.best);
+                if S::bits(hull) == 0 {
                     continue;
                 }
                 for &(k, ref b) in run {
-                    let inside = near & box8(s, b, &ray.origin, &inv, best);
+                    let inside = hull & box8(s, b, &ray.origin, &inv, near.best);
                     if S::bits(inside) == 0 {
                         continue;
                     }
-                    let (h, at) = hit_part(s, p.geom(k), &ray.origin, &ray.d);
-                    let take = inside & S::lt(h, best);
-                    best = S::select(take, h, best);
-                    which = S::select(take, s.splat(k as f32), which);
-                    part = S::select(take, at, part);
+                    near.offer(s, inside, hit_part(s, p.geom(k), &ray.origin, &ray.d), k);
                 }
             }
         }
-        Found {
-            missed: !S::bits(S::lt(best, inf)),
-            which,
-            at: Some((best, part)),
-        }
+        near.found(!S::bits(S::lt(near.best, inf)))
     }
 }

@@ -17,7 +17,7 @@
 
 use super::hits::{blocks8, box8, hit_part, recip};
 use super::lookup::lookup;
-use super::nearest::Found;
+use super::nearest::{Found, Nearest};
 use super::{L3, LANES, Packet, lanes_with, splat3};
 use crate::shadow::Lookup;
 use crate::simd::Simd;
@@ -47,24 +47,15 @@ impl Packet<'_, '_> {
     ) -> (u8, Found<S::F>) {
         let eye = splat3(s, self.cam.origin);
         let inv = recip(s, d);
-        let (mut best, mut which, mut part) = (t, s.splat(0.0), s.splat(0.0));
+        let mut near = Nearest::before(s, t);
         for &k in others {
-            let inside = box8(s, &self.p.boxes[k], &eye, &inv, best);
+            let inside = box8(s, &self.p.boxes[k], &eye, &inv, near.best);
             if S::bits(inside) == 0 {
                 continue;
             }
-            let (h, at) = hit_part(s, self.p.geom(k), &eye, d);
-            let take = inside & S::lt(h, best);
-            best = S::select(take, h, best);
-            which = S::select(take, s.splat(k as f32), which);
-            part = S::select(take, at, part);
+            near.offer(s, inside, hit_part(s, self.p.geom(k), &eye, d), k);
         }
-        let found = Found {
-            missed: 0,
-            which,
-            at: Some((best, part)),
-        };
-        (S::bits(S::lt(best, t)), found)
+        (S::bits(S::lt(near.best, t)), near.found(0))
     }
 
     /// The lanes of `live` (bits) whose rays object `k` meets before `dist`.
