@@ -18,6 +18,9 @@ use crate::prepared::Geom;
 use crate::simd::Simd;
 use glam::Vec3;
 
+/// Every lane (bits).
+const LANES_ALL: u8 = 0xFF;
+
 /// `1 / v` per component (`Vec3::recip`).
 #[inline(always)]
 pub(super) fn recip<S: Simd>(s: S, v: &L3<S::F>) -> L3<S::F> {
@@ -98,8 +101,20 @@ fn across<S: Simd>(s: S, (a, u): (Vec3, Vec3), o: &L3<S::F>, d: &L3<S::F>) -> Ac
 /// lies on: 0 the body, 1 and 2 the caps at `a` and `b`. "No hit yet" is +inf,
 /// which takes and drops the same roots as the scalar `None` (a root of +inf
 /// could never be nearer than another).
+///
+/// Only the lanes of `want` (bits) need be right, and of those only the ones
+/// whose hit is not already below `enough`: a lane whose body hit lies below
+/// it keeps that `t` without the caps, which could only lower it (an any-hit
+/// query passes its `t_max`; a nearest-hit one -inf, so every lane looks at
+/// the caps). Where every wanted lane misses the infinite cylinder, as the
+/// scalar test returns early, the roots and caps are skipped.
 #[inline(always)]
-fn cylinder<S: Simd>(s: S, c: &Cylinder, o: &L3<S::F>, d: &L3<S::F>) -> (S::F, S::F) {
+fn cylinder<S: Simd>(
+    s: S,
+    c: &Cylinder,
+    (o, d): (&L3<S::F>, &L3<S::F>),
+    (want, enough): (u8, S::F),
+) -> (S::F, S::F) {
     let (a, b, u, len, radius) = c.parts();
     let k = |v: f32| s.splat(v);
     let Across { du, ou, dp, op } = across(s, (a, u), o, d);
@@ -110,6 +125,10 @@ fn cylinder<S: Simd>(s: S, c: &Cylinder, o: &L3<S::F>, d: &L3<S::F>) -> (S::F, S
     let f = op.sub(&dp.scale(qb / qa));
     let disc = qa * (r2 - f.dot(&f));
     let miss_all = body & S::lt(disc, k(0.0));
+    // Missing the infinite cylinder misses the caps too (`Cylinder::hit`).
+    if S::bits(miss_all) & want == want {
+        return (k(f32::INFINITY), k(0.0));
+    }
     let root = S::sqrt(disc);
     let (mut best, mut part) = (k(f32::INFINITY), k(0.0));
     for root in [-qb - root, -qb + root] {
@@ -118,6 +137,10 @@ fn cylinder<S: Simd>(s: S, c: &Cylinder, o: &L3<S::F>, d: &L3<S::F>) -> (S::F, S
         let inside = S::le(k(0.0), along) & S::le(along, k(len));
         let take = body & inside & S::lt(t_min, t) & S::lt(t, best);
         best = S::select(take, t, best);
+    }
+    // Every wanted lane blocked before the caps: they could only come nearer.
+    if S::bits(S::lt(best, enough) | miss_all) & want == want {
+        return (S::select(miss_all, k(f32::INFINITY), best), part);
     }
     // |du| > 1e-12
     let caps = S::lt(k(1e-12), S::abs(du));
@@ -139,7 +162,7 @@ pub(super) fn hit_normal<S: Simd>(s: S, g: &Geom, o: &L3<S::F>, d: &L3<S::F>) ->
     if let Geom::Plane { point, normal } = *g {
         return (plane8(s, (point, normal), o, d), splat3(s, normal));
     }
-    let (t, part) = hit_part(s, g, o, d);
+    let (t, part) = hit_part(s, g, (o, d), LANES_ALL);
     (t, normal_at(s, g, (o, d), (t, part)))
 }
 
@@ -192,26 +215,37 @@ pub(super) fn plane8<S: Simd>(
 }
 
 /// Per lane, where bounded object `g` first meets the ray beyond `T_MIN` (the
-/// `t` of `hit_sphere` or `Cylinder::hit`), or +inf; planes are tested
-/// elsewhere (+inf here).
+/// `t` of `hit_sphere` or `Cylinder::hit`), or +inf (planes are tested
+/// elsewhere: +inf here), and the part of the object met, for [`normal_at`]:
+/// a cylinder's body (0) or caps (1 and 2); 0 for a sphere. Right in the lanes of `want`
+/// (bits); the others' answers may differ.
 #[inline(always)]
-pub(super) fn hit8<S: Simd>(s: S, g: &Geom, o: &L3<S::F>, d: &L3<S::F>) -> S::F {
-    hit_part(s, g, o, d).0
-}
-
-/// [`hit8`] and the part of the object met, for [`normal_at`]: a cylinder's
-/// body (0) or caps (1 and 2); 0 for a sphere.
-#[inline(always)]
-pub(super) fn hit_part<S: Simd>(s: S, g: &Geom, o: &L3<S::F>, d: &L3<S::F>) -> (S::F, S::F) {
+pub(super) fn hit_part<S: Simd>(
+    s: S,
+    g: &Geom,
+    (o, d): (&L3<S::F>, &L3<S::F>),
+    want: u8,
+) -> (S::F, S::F) {
     match *g {
         Geom::Sphere { centre, radius } => (sphere(s, (centre, radius), o, d), s.splat(0.0)),
-        Geom::Cylinder(ref c) => cylinder(s, c, o, d),
+        Geom::Cylinder(ref c) => cylinder(s, c, (o, d), (want, s.splat(f32::NEG_INFINITY))),
         Geom::Plane { .. } => (s.splat(f32::INFINITY), s.splat(0.0)),
     }
 }
 
-/// Per lane, whether bounded object `g` meets the ray before `t_max`.
+/// Per lane of `want` (bits), whether bounded object `g` meets the ray before
+/// `t_max`; the other lanes' answers may differ.
 #[inline(always)]
-pub(super) fn blocks8<S: Simd>(s: S, g: &Geom, o: &L3<S::F>, d: &L3<S::F>, t_max: S::F) -> S::M {
-    S::lt(hit8(s, g, o, d), t_max)
+pub(super) fn blocks8<S: Simd>(
+    s: S,
+    g: &Geom,
+    (o, d): (&L3<S::F>, &L3<S::F>),
+    t_max: S::F,
+    want: u8,
+) -> S::M {
+    let t = match *g {
+        Geom::Cylinder(ref c) => cylinder(s, c, (o, d), (want, t_max)).0,
+        _ => hit_part(s, g, (o, d), want).0,
+    };
+    S::lt(t, t_max)
 }

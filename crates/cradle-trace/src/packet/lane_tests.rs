@@ -59,7 +59,7 @@ fn four<S: Simd>(
 ) -> [u8; 4] {
     let (o, d, inv) = (load3(s, o), load3(s, d), load3(s, inv));
     let t = s.splat(t_max);
-    let hit = |g: &Geom| S::bits(blocks8(s, g, &o, &d, t));
+    let hit = |g: &Geom| S::bits(blocks8(s, g, (&o, &d), t, 0xFF));
     [
         S::bits(box8(s, boxed, &o, &inv, t)),
         hit(&shapes[0]),
@@ -327,7 +327,7 @@ fn hit_lanes<S: Simd>(s: S, g: &Geom, o: &V8, d: &V8) -> (F8, F8, V8, F8, V8) {
     use super::hits::{hit_normal, hit_part, normal_at};
     use super::store3;
     let (o, d) = (load3(s, o), load3(s, d));
-    let (t, part) = hit_part(s, g, &o, &d);
+    let (t, part) = hit_part(s, g, (&o, &d), 0xFF);
     let n = normal_at(s, g, (&o, &d), (t, part));
     let (t2, n2) = hit_normal(s, g, &o, &d);
     (
@@ -340,3 +340,4 @@ fn hit_lanes<S: Simd>(s: S, g: &Geom, o: &V8, d: &V8) -> (F8, F8, V8, F8, V8) {
 }
 
 mod highlights;
+mod wanted;

@@ -306,7 +306,13 @@ impl Packet<'_, '_> {
                 if S::bits(inside) & on_floor == 0 {
                     continue;
                 }
-                near.offer(s, inside, hit_part(s, self.p.geom(k), start, &dir), k);
+                let want = S::bits(inside);
+                near.offer(
+                    s,
+                    inside,
+                    hit_part(s, self.p.geom(k), (start, &dir), want),
+                    k,
+                );
             }
             missed = !S::bits(S::lt(near.best, inf));
             found = Some(near.found(missed));

@@ -13,7 +13,6 @@ use super::hits::{box8, hit_part, recip};
 use super::{F8, LANES, Packet, store3};
 use crate::geometry::Ray;
 use crate::simd::Simd;
-use crate::wide::W;
 
 /// The nearest hits of a level's lanes: the lanes that meet nothing (bits),
 /// the object each other lane meets (its index as `f32`), and where the scan
@@ -150,17 +149,24 @@ impl Packet<'_, '_> {
             // Eight objects at a time behind their chunk's hull: lanes that
             // miss it before their nearest hit so far miss each of the eight
             // (`Chunk::hull`).
-            for (run, chunk) in p.bounded.chunks(W).zip(p.wide.chunks()) {
+            for chunk in p.wide.chunks() {
                 let hull = within & box8(s, chunk.hull(), &ray.origin, &inv, near.best);
                 if S::bits(hull) == 0 {
                     continue;
                 }
-                for &(k, ref b) in run {
-                    let inside = hull & box8(s, b, &ray.origin, &inv, near.best);
+                for &k in chunk.items() {
+                    let k = k as usize;
+                    let inside = hull & box8(s, &p.boxes[k], &ray.origin, &inv, near.best);
                     if S::bits(inside) == 0 {
                         continue;
                     }
-                    near.offer(s, inside, hit_part(s, p.geom(k), &ray.origin, &ray.d), k);
+                    let want = S::bits(inside);
+                    near.offer(
+                        s,
+                        inside,
+                        hit_part(s, p.geom(k), (&ray.origin, &ray.d), want),
+                        k,
+                    );
                 }
             }
         }

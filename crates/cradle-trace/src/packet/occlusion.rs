@@ -53,7 +53,12 @@ impl Packet<'_, '_> {
             if S::bits(inside) == 0 {
                 continue;
             }
-            near.offer(s, inside, hit_part(s, self.p.geom(k), &eye, d), k);
+            near.offer(
+                s,
+                inside,
+                hit_part(s, self.p.geom(k), (&eye, d), S::bits(inside)),
+                k,
+            );
         }
         (S::bits(S::lt(near.best, t)), near.found(0))
     }
@@ -76,7 +81,7 @@ impl Packet<'_, '_> {
         if inside == 0 {
             return 0;
         }
-        inside & S::bits(blocks8(s, self.p.geom(k), start, dir, dist))
+        inside & S::bits(blocks8(s, self.p.geom(k), (start, dir), dist, inside))
     }
 
     /// The lanes of `want` (bits) whose rays from `start` on object `from`
