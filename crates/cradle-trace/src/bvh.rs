@@ -30,16 +30,18 @@ fn area(b: &Aabb) -> f32 {
 
 /// The split of `items` by the surface area heuristic: along each axis, sorted by
 /// box centre (ties by item, so the tree is the same on every run), the cut that
-/// minimises `area(left) * left + area(right) * right`. Leaves `items` sorted along
-/// the chosen axis; returns it and the size of the left part (at least 1).
+/// minimises `area(left) * left + area(right) * right`, among the cuts whose left
+/// part holds a multiple of `step` items. Leaves `items` sorted along the chosen
+/// axis; returns it and the size of the left part (at least `step`; `items` must
+/// hold more than `step`).
 ///
 /// Large boxes (the frame's rails, spanning the whole cradle) end up apart from
 /// the small ones (balls, strings), instead of in every node as a median split of
 /// centres puts them.
-fn sah_split(boxes: &[Aabb], items: &mut [usize]) -> (usize, usize) {
+fn sah_split(boxes: &[Aabb], items: &mut [usize], step: usize) -> (usize, usize) {
     let centre = |k: usize| (boxes[k].min + boxes[k].max) * 0.5;
     let n = items.len();
-    let mut best = (f32::INFINITY, 0, n / 2);
+    let mut best = (f32::INFINITY, 0, (n / 2).div_ceil(step) * step);
     let mut right = vec![0.0; n];
     for axis in 0..3 {
         items.sort_by(|&a, &b| centre(a)[axis].total_cmp(&centre(b)[axis]).then(a.cmp(&b)));
@@ -52,7 +54,7 @@ fn sah_split(boxes: &[Aabb], items: &mut [usize]) -> (usize, usize) {
         for i in 1..n {
             acc = acc.union(boxes[items[i - 1]]);
             let cost = area(&acc) * i as f32 + right[i];
-            if cost < best.0 {
+            if i % step == 0 && cost < best.0 {
                 best = (cost, axis, i);
             }
         }
@@ -60,6 +62,30 @@ fn sah_split(boxes: &[Aabb], items: &mut [usize]) -> (usize, usize) {
     let axis = best.1;
     items.sort_by(|&a, &b| centre(a)[axis].total_cmp(&centre(b)[axis]).then(a.cmp(&b)));
     (axis, best.2)
+}
+
+/// `boxes` (item `k` is `boxes[k]`) in runs of at most `size` that lie close
+/// together: cut by the surface area heuristic until each part fits in one
+/// run. A scan that tests a run's hull before its boxes then skips the runs a
+/// ray passes by. The runs, in order.
+#[must_use]
+pub(crate) fn runs(boxes: &[Aabb], size: usize) -> Vec<Vec<usize>> {
+    fn cut(boxes: &[Aabb], items: &mut [usize], size: usize, out: &mut Vec<Vec<usize>>) {
+        if items.len() <= size {
+            out.push(items.to_vec());
+            return;
+        }
+        let (_, half) = sah_split(boxes, items, 1);
+        let (left, right) = items.split_at_mut(half);
+        cut(boxes, left, size, out);
+        cut(boxes, right, size, out);
+    }
+    let mut order: Vec<usize> = (0..boxes.len()).collect();
+    let mut out = Vec::new();
+    if !order.is_empty() {
+        cut(boxes, &mut order, size.max(1), &mut out);
+    }
+    out
 }
 
 /// The hierarchy; items are positions in the list it was built from.
@@ -97,7 +123,7 @@ impl Bvh {
         if count <= LEAF {
             return at;
         }
-        let (axis, half) = sah_split(boxes, items);
+        let (axis, half) = sah_split(boxes, items, 1);
         self.nodes[at].count = 0;
         self.nodes[at].axis = axis as u8;
         self.build(boxes, first, half);
@@ -171,5 +197,42 @@ impl Bvh {
             top += 2;
         }
         false
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::runs;
+    use crate::geometry::Aabb;
+    use glam::Vec3;
+
+    /// Runs hold every item once, at most `size` each, and keep apart boxes
+    /// that lie apart: two rows of small boxes far apart, interleaved in the
+    /// input, and one long box across both, come out as runs of one row
+    /// each and the long box's own.
+    #[test]
+    fn runs_group_boxes_that_lie_together() {
+        let small = |x: f32, z: f32| Aabb {
+            min: Vec3::new(x, 0.0, z),
+            max: Vec3::new(x + 0.01, 0.01, z + 0.01),
+        };
+        let mut boxes: Vec<Aabb> = (0..6)
+            .flat_map(|i| [small(i as f32 * 0.02, 0.0), small(i as f32 * 0.02, 1.0)])
+            .collect();
+        boxes.push(Aabb {
+            min: Vec3::new(-0.5, 0.5, 0.0),
+            max: Vec3::new(0.5, 0.51, 1.01),
+        });
+        let got = runs(&boxes, 8);
+        let mut all: Vec<usize> = got.iter().flatten().copied().collect();
+        all.sort_unstable();
+        assert_eq!(all, (0..boxes.len()).collect::<Vec<_>>());
+        assert!(got.iter().all(|r| !r.is_empty() && r.len() <= 8), "{got:?}");
+        // Item i's row: even items at z = 0, odd ones at z = 1, the last alone.
+        let row = |i: usize| if i == 12 { 2 } else { i % 2 };
+        for r in &got {
+            assert!(r.iter().all(|&i| row(i) == row(r[0])), "{got:?}");
+        }
+        assert!(runs(&[], 8).is_empty());
     }
 }

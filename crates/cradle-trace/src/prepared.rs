@@ -2,13 +2,13 @@
 //! around everything but the planes, and the queries the shading needs (nearest
 //! hit, any hit).
 
-use super::bvh::Bvh;
+use super::bvh::{Bvh, runs};
 use super::casters::{Casters, clear_of};
 use super::geometry::{Aabb, Cylinder, Ray, hit_plane, hit_sphere};
 use super::scene::{Scene, Shape};
 use super::shade::Phong;
 use super::shadow::Footprints;
-use super::wide::{WIDE_AT_MOST, WideBoxes};
+use super::wide::{W, WIDE_AT_MOST, WideBoxes};
 use glam::Vec3;
 use std::cell::Cell;
 
@@ -124,6 +124,14 @@ impl<'a> Prepared<'a> {
                 None => planes.push(i),
             }
         }
+        // Query order: runs of up to W objects close together, each a chunk
+        // of `wide`, so that the scans' hull tests pass over whole runs.
+        let runs: Vec<Vec<(usize, Aabb)>> =
+            runs(&bounded.iter().map(|&(_, b)| b).collect::<Vec<_>>(), W)
+                .into_iter()
+                .map(|run| run.into_iter().map(|k| bounded[k]).collect())
+                .collect();
+        let bounded: Vec<(usize, Aabb)> = runs.iter().flatten().copied().collect();
         let mut plane_slot = vec![None; scene.objects.len()];
         for (slot, &i) in planes.iter().enumerate() {
             plane_slot[i] = Some(slot);
@@ -145,7 +153,7 @@ impl<'a> Prepared<'a> {
                 .iter()
                 .map(|o| o.material.specular.map(Phong::new))
                 .collect(),
-            wide: WideBoxes::new(bounded.iter().copied()),
+            wide: WideBoxes::in_runs(&runs),
             bounded,
             group,
             planes,

@@ -128,16 +128,19 @@ fn lanes_avx2(s: Avx2, c: &Chunk, o: Vec3, inv: Vec3, t_max: f32) -> u8 {
 }
 
 impl WideBoxes {
-    /// The chunks: each holds the next eight (or, last, fewer) boxes in order.
+    /// The chunks: each holds the next run's boxes (up to eight), in order.
     #[inline]
     pub(crate) fn chunks(&self) -> &[Chunk] {
         &self.chunks
     }
 
-    /// The boxes of `items` (item, box), in that order.
-    pub(crate) fn new(items: impl IntoIterator<Item = (usize, Aabb)>) -> Self {
+    /// The boxes of each run of `runs` (item, box) in chunks of their own:
+    /// the runs' items, in order.
+    pub(crate) fn in_runs(runs: &[Vec<(usize, Aabb)>]) -> Self {
         let mut chunks = Vec::new();
-        push_chunks(&mut chunks, items);
+        for run in runs {
+            push_chunks(&mut chunks, run.iter().copied());
+        }
         Self { chunks }
     }
 
@@ -161,6 +164,12 @@ impl Chunk {
     #[inline]
     pub(crate) fn hull(&self) -> &Aabb {
         &self.hull
+    }
+
+    /// The chunk's items, in order.
+    #[inline]
+    pub(crate) fn items(&self) -> &[u32] {
+        &self.items[..self.used.count_ones() as usize]
     }
 }
 
@@ -270,7 +279,7 @@ mod tests {
     /// Both builds of the eight-box test against `Aabb::hit`, box by box.
     fn check(boxes: &[Aabb], ray: &Ray, t_max: f32) {
         let inv = ray.dir.recip();
-        let wide = WideBoxes::new(boxes.iter().copied().enumerate());
+        let wide = WideBoxes::in_runs(&[boxes.iter().copied().enumerate().collect()]);
         for (k, c) in wide.chunks.iter().enumerate() {
             let want = (0..W).fold(0u8, |bits, j| {
                 let i = k * W + j;
@@ -312,7 +321,7 @@ mod tests {
         origins.push(boxes[3].min);
         origins.push(Vec3::new(boxes[5].max.x, 0.0, 0.0));
         // On the chunks' hulls: corners and faces, where `0 * inf` arises.
-        let hulls = WideBoxes::new(boxes.iter().copied().enumerate());
+        let hulls = WideBoxes::in_runs(&[boxes.iter().copied().enumerate().collect()]);
         for c in &hulls.chunks {
             let (lo, hi) = (c.hull.min, c.hull.max);
             origins.extend([
