@@ -217,8 +217,8 @@ pub(super) fn plane8<S: Simd>(
 /// Per lane, where bounded object `g` first meets the ray beyond `T_MIN` (the
 /// `t` of `hit_sphere` or `Cylinder::hit`), or +inf (planes are tested
 /// elsewhere: +inf here), and the part of the object met, for [`normal_at`]:
-/// a cylinder's body (0) or caps (1 and 2); 0 for a sphere. Right in the lanes of `want`
-/// (bits); the others' answers may differ.
+/// a cylinder's body (0) or caps (1 and 2); 0 for a sphere. Right in the
+/// lanes of `want` (bits); the others' answers may differ.
 #[inline(always)]
 pub(super) fn hit_part<S: Simd>(
     s: S,

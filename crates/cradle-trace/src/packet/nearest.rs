@@ -1,6 +1,6 @@
 //! The nearest hit of each lane's ray in a bounce past the eye's first hit,
 //! as `Prepared::closest_from` finds it: the planes (but the one a lane's ray
-//! leaves), then the bounded objects eight at a time behind their chunk's
+//! leaves), then the bounded objects in runs of up to eight behind their chunk's
 //! hull, or, in a large scene, each lane through the hierarchy.
 
 #![expect(
@@ -98,7 +98,7 @@ impl<F: Copy> Nearest<F> {
 }
 
 /// Up to this many bounded objects the lanes' nearest hit scans the boxes over
-/// the lanes (eight at a time behind their chunk's hull); past it each lane
+/// the lanes (a run of up to eight at a time behind its hull); past it each lane
 /// walks the hierarchy. Measured with the hulls: 200 balls (612 objects) cost
 /// 2,493 instructions per pixel scanning, 2,588 walking.
 const SCAN_AT_MOST: usize = 1024;
@@ -146,9 +146,9 @@ impl Packet<'_, '_> {
         let within = live & S::bits(box8(s, &p.group, &ray.origin, &inv, inf));
         if within != 0 {
             let within = s.mask(within);
-            // Eight objects at a time behind their chunk's hull: lanes that
-            // miss it before their nearest hit so far miss each of the eight
-            // (`Chunk::hull`).
+            // A run of up to eight objects at a time behind its chunk's hull:
+            // lanes that miss it before their nearest hit so far miss each of
+            // the run's objects (`Chunk::hull`).
             for chunk in p.wide.chunks() {
                 let hull = within & box8(s, chunk.hull(), &ray.origin, &inv, near.best);
                 if S::bits(hull) == 0 {
