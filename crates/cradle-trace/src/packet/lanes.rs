@@ -10,7 +10,7 @@
 )]
 
 use super::bounce::{Bounce, Bounces};
-use super::hits::{box8, hit_part, plane8, recip};
+use super::hits::{box8, plane8, recip};
 use super::nearest::Nearest;
 use super::{Floor, L3, LANES, Packet, Surface, f8, lanes, splat3};
 use crate::scene::{Light, Material, Shape};
@@ -306,13 +306,7 @@ impl Packet<'_, '_> {
                 if S::bits(inside) & on_floor == 0 {
                     continue;
                 }
-                let want = S::bits(inside);
-                near.offer(
-                    s,
-                    inside,
-                    hit_part(s, self.p.geom(k), (start, &dir), want),
-                    k,
-                );
+                near.offer_object(s, inside, (self.p.geom(k), k), (start, &dir));
             }
             missed = !S::bits(S::lt(near.best, inf));
             found = Some(near.found(missed));

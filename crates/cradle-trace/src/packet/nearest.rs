@@ -10,8 +10,9 @@
 
 use super::bounce::{Bounce, leaving};
 use super::hits::{box8, hit_part, recip};
-use super::{F8, LANES, Packet, store3};
+use super::{F8, L3, LANES, Packet, store3};
 use crate::geometry::Ray;
+use crate::prepared::Geom;
 use crate::simd::Simd;
 
 /// The nearest hits of a level's lanes: the lanes that meet nothing (bits),
@@ -84,6 +85,21 @@ impl<F: Copy> Nearest<F> {
         self.best = S::select(take, t, self.best);
         self.which = S::select(take, s.splat(k as f32), self.which);
         self.part = S::select(take, part, self.part);
+    }
+
+    /// Bounded object `k` (`g`), tested by its hit test in the lanes of
+    /// `inside` (those within its box; the test need be right only there),
+    /// offered where nearer ([`Self::offer`]).
+    #[inline(always)]
+    pub(super) fn offer_object<S: Simd<F = F>>(
+        &mut self,
+        s: S,
+        inside: S::M,
+        (g, k): (&Geom, usize),
+        (o, d): (&L3<F>, &L3<F>),
+    ) {
+        let hit = hit_part(s, g, (o, d), S::bits(inside));
+        self.offer(s, inside, hit, k);
     }
 
     /// As [`Found`], the lanes of `missed` meeting nothing.
@@ -160,13 +176,7 @@ impl Packet<'_, '_> {
                     if S::bits(inside) == 0 {
                         continue;
                     }
-                    let want = S::bits(inside);
-                    near.offer(
-                        s,
-                        inside,
-                        hit_part(s, p.geom(k), (&ray.origin, &ray.d), want),
-                        k,
-                    );
+                    near.offer_object(s, inside, (p.geom(k), k), (&ray.origin, &ray.d));
                 }
             }
         }

@@ -15,7 +15,7 @@
     reason = "the lane code is inlined into each entry point, so the AVX2 one compiles it for AVX2"
 )]
 
-use super::hits::{blocks8, box8, hit_part, recip};
+use super::hits::{blocks8, box8, recip};
 use super::lookup::lookup;
 use super::nearest::{Found, Nearest};
 use super::{L3, LANES, Packet, lanes_with, splat3};
@@ -53,12 +53,7 @@ impl Packet<'_, '_> {
             if S::bits(inside) == 0 {
                 continue;
             }
-            near.offer(
-                s,
-                inside,
-                hit_part(s, self.p.geom(k), (&eye, d), S::bits(inside)),
-                k,
-            );
+            near.offer_object(s, inside, (self.p.geom(k), k), (&eye, d));
         }
         (S::bits(S::lt(near.best, t)), near.found(0))
     }
