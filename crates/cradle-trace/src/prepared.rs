@@ -3,7 +3,7 @@
 //! hit, any hit).
 
 use super::bvh::{Bvh, runs};
-use super::casters::{Casters, clear_of};
+use super::casters::Casters;
 use super::geometry::{Aabb, Cylinder, Ray, hit_plane, hit_sphere};
 use super::scene::{Scene, Shape};
 use super::shade::Phong;
@@ -229,31 +229,20 @@ impl<'a> Prepared<'a> {
 
     /// [`Self::closest`] for the mirror ray of a point of object `from` that its
     /// ray met from `outside`. A plane's own rays never test it, in every
-    /// renderer (the one rule of hits that the reference keeps too); with the
-    /// hierarchy on, a bounded object is not tested either when the ray starts
-    /// clearly outside it ([`clear_of`]), as it then cannot meet it: the same
-    /// hit either way.
-    ///
-    /// The mirror ray leaves along `d - 2 (d . n) n`, with `n` turned to face the
-    /// incoming `d`, so it runs away from the tangent plane at the point (or
-    /// along it, at a grazing bounce, to rounding), from a start 2e-5 m off the
-    /// surface along `n`. A sphere, a capped cylinder or a plane lies wholly on
-    /// the other side of that plane, so the ray would have to travel some 200 m
-    /// before rounding of its direction (about 1e-7) brought it back: no hit
-    /// (for a plane, only a far point's own rounding could make one). A point
-    /// met from inside (a reflection starting within a touching ball) is tested,
-    /// as the reference does.
+    /// renderer (the one rule of hits that the reference keeps too); a bounded
+    /// object is tested again, in every renderer, even when the ray leaves it
+    /// from outside: the mirror ray runs away from its surface, but a sphere's
+    /// test can still round to a hit just past `T_MIN` when the direction is a
+    /// little short of unit length (a reflection of a reflection), and every
+    /// renderer must round the same way.
     #[must_use]
     pub fn closest_from(&self, from: Option<(usize, bool)>, ray: &Ray, t_max: f32) -> Option<Hit> {
         let own = self.own_plane(from.map(|f| f.0));
         if let Some(bvh) = &self.bvh {
-            let skip = from
-                .filter(|&(i, outside)| outside && clear_of(self.geom(i), ray.origin))
-                .map_or(own, |(i, _)| i);
             if self.bounded.len() > WIDE_AT_MOST {
-                return self.closest_bvh(bvh, ray, t_max, skip);
+                return self.closest_bvh(bvh, ray, t_max, own);
             }
-            return self.closest_wide(ray, t_max, skip);
+            return self.closest_wide(ray, t_max, own);
         }
         let mut best: Option<(f32, usize, Vec3)> = None;
         let consider = |i: usize, best: &mut Option<(f32, usize, Vec3)>| {

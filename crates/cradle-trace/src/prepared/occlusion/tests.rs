@@ -83,3 +83,31 @@ fn a_planes_own_rays_do_not_test_it() {
         assert_eq!(primary.map(|h| h.object), Some(0), "{setup}");
     }
 }
+
+#[test]
+fn a_balls_own_mirror_ray_rounds_the_same_way_in_every_renderer() {
+    // A second bounce off a ball (centre (0.04, 0.09, 0), r = 0.02), seen in
+    // a swinging cradle: the ray starts 1.02e-5 m outside the ball and runs
+    // away from it, but its direction is 0.14% short of unit length, and the
+    // sphere test rounds to a hit at t = 1.23e-5, just past T_MIN (numpy's f32
+    // gives the same). The hierarchy once skipped the ball as "clearly
+    // outside" while the reference found it: one pixel off by one.
+    let mut scene = floor_and_ball();
+    scene.objects[1].shape = Shape::Sphere {
+        centre: Vec3::new(0.04, 0.09, 0.0),
+        radius: 0.02,
+    };
+    let ray = Ray {
+        origin: Vec3::new(0.056_528_3, 0.101_239_79, -0.000_943_438_4),
+        dir: Vec3::new(0.429_356_87, 0.895_255_6, -0.106_650_91),
+    };
+    let key = |bvh: bool| {
+        Prepared::new(&scene)
+            .with_bvh(bvh)
+            .closest_from(Some((1, true)), &ray, f32::INFINITY)
+            .map(|h| (h.object, h.t.to_bits()))
+    };
+    let reference = key(false);
+    assert_eq!(reference.map(|(o, _)| o), Some(1), "the rounding hit");
+    assert_eq!(key(true), reference, "the hierarchy finds the same");
+}
