@@ -3,6 +3,7 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use newtons_cradle::app::hud::Canvas;
+use newtons_cradle::app::session::Overlay;
 use newtons_cradle::config::Config;
 use newtons_cradle::scene::CradleWorld;
 use newtons_cradle::trace;
@@ -28,24 +29,32 @@ fn frame(c: &mut Criterion) {
 
 fn hud(c: &mut Criterion) {
     let mut rgba = vec![128u8; 1200 * 600 * 4];
-    let lines: Vec<(String, [u8; 3])> = [
-        "Newton's cradle   RUNNING",
-        "fps   6.4   trace  146.4 ms   t     7.73 s",
-        "balls 5  lifted 1  contact ideal   energy err -1.3e-16",
-        "H: help",
+    let status: Vec<(String, [u8; 3])> = [
+        "RUNNING   fps   6.4   trace  146.4 ms   t     7.73 s   rate 1x",
+        "balls 5   lifted 1 at 30.0 deg   ideal   energy err -1.3e-16",
+        "H: help   TAB: panel",
     ]
     .iter()
     .map(|l| ((*l).to_string(), [235, 235, 235]))
     .collect();
-    c.bench_function("hud 4 lines over 1200x600", |b| {
+    let overlay = Overlay {
+        status,
+        help: true,
+        notices: vec![(
+            "saved screenshot newtons-cradle-20261203-101010.png".into(),
+            [150, 230, 160],
+        )],
+    };
+    c.bench_function("hud status, help and a notice over 1200x600", |b| {
         b.iter(|| {
             let mut canvas = Canvas {
                 rgba: &mut rgba,
                 width: 1200,
                 height: 600,
                 bgra: false,
+                scale: 2,
             };
-            canvas.panel(0, std::hint::black_box(&lines))
+            canvas.overlay(std::hint::black_box(&overlay))
         });
     });
 }

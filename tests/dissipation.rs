@@ -50,7 +50,7 @@ fn zero_dissipation_and_drag_print_the_elastic_hertz_json_byte_for_byte() {
 #[test]
 fn the_realistic_asset_breaks_up_and_ends_swinging_in_phase() {
     // The whole 90 s the issue asks for: 0.7 s of CPU in a release build.
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/realistic.ron");
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/presets/realistic.ron");
     let config = load_file(&path).expect("the shipped asset loads");
     let r = rocking::run(&config, 90.0);
     // The break-up: a second after release (one strike), more than the two end
@@ -79,7 +79,7 @@ fn simulate_books_the_energy_lost_when_the_cradle_dissipates() {
     let o = run(&[
         "simulate",
         "--config",
-        "assets/realistic.ron",
+        "assets/presets/realistic.ron",
         "--duration",
         "2",
         "--every",
@@ -154,7 +154,7 @@ fn bench_rocking_reports_phase_energy_and_restitution() {
         "bench",
         "rocking",
         "--config",
-        "assets/realistic.ron",
+        "assets/presets/realistic.ron",
         "--duration",
         "3",
         "--json",

@@ -175,3 +175,64 @@ fn frame_stays_clear_of_the_swing() {
         );
     }
 }
+
+#[test]
+fn far_strings_are_drawn_a_pixel_wide_inside_the_widened_swing_box() {
+    // A string thinner than a pixel is missed by the pixel centres by turns as
+    // it swings, and shimmers: far ones are drawn at least one pixel wide.
+    let pixel_at = |scene: &trace::Scene, d: f64| {
+        let fov = f64::from(scene.camera.fov_deg).to_radians();
+        2.0 * (0.5 * fov).tan() / f64::from(scene.size.1) * d
+    };
+    let strings = |scene: &trace::Scene| -> Vec<(glam::Vec3, glam::Vec3, f32)> {
+        scene
+            .objects
+            .iter()
+            .filter(|o| o.moving)
+            .filter_map(|o| match o.shape {
+                trace::Shape::Cylinder { a, b, radius } => Some((a, b, radius)),
+                _ => None,
+            })
+            .collect()
+    };
+    let mut config = Config::default();
+    config.cradle.balls = 200;
+    config.start.lift = 20;
+    let mut w = CradleWorld::new(&config);
+    w.show_at(0.3);
+    let scene = w.scene();
+    let eye = scene.camera.position.as_dvec3();
+    let (lo, hi) = scene.motion_bounds.expect("a swing box");
+    let found = strings(scene);
+    assert_eq!(found.len(), 400);
+    let mut widened = 0;
+    for (a, b, r) in found {
+        let far = (a.as_dvec3() - eye)
+            .length()
+            .max((b.as_dvec3() - eye).length());
+        // f32 radius against the f64 floor: a relative 1e-6 of rounding.
+        assert!(
+            f64::from(r) >= 0.5 * pixel_at(scene, far) * (1.0 - 1e-6),
+            "a string {far:.2} m away is {r} m thick"
+        );
+        assert!(f64::from(r) >= config.cradle.string_radius * (1.0 - 1e-6));
+        widened += usize::from(f64::from(r) > config.cradle.string_radius * 1.001);
+        let r = glam::Vec3::splat(r);
+        for end in [a, b] {
+            assert!(
+                (end - r).cmpge(lo).all() && (end + r).cmple(hi).all(),
+                "every string stays inside the motion bounds"
+            );
+        }
+    }
+    assert!(widened > 100, "the far strings are widened: {widened}");
+    // The default view's strings are wider than a pixel already: unchanged.
+    let mut w = CradleWorld::new(&Config::default());
+    w.show_at(0.0);
+    let near = strings(w.scene());
+    assert!(
+        near.iter()
+            .all(|&(_, _, r)| f64::from(r) == f64::from(0.0006_f32)),
+        "{near:?}"
+    );
+}

@@ -44,7 +44,7 @@ fn the_whole_cradle_is_in_view_at_the_default_camera() {
             let (sx, sy, depth) =
                 view_coords(&cam, config.render.width, config.render.height, corner);
             assert!(
-                depth > 0.0 && sx.abs() < 1.0 && sy.abs() < 1.0,
+                depth > 0.0 && sx.abs() < 1.0 && in_band(sy),
                 "{balls} balls: frame corner {corner:?} at ({sx:.3}, {sy:.3})"
             );
         }
@@ -53,6 +53,52 @@ fn the_whole_cradle_is_in_view_at_the_default_camera() {
             (glam::DVec3::from(c.look_at) - glam::DVec3::from(c.position)).normalize()
         };
         assert!((dir(&cam) - dir(&default.camera)).length() < 1e-12);
+    }
+}
+
+/// Whether a height `sy` (-1 at the bottom edge, 1 at the top) lies between
+/// the window's status band (the top 12%) and its help band (the bottom 12%).
+fn in_band(sy: f64) -> bool {
+    sy.abs() <= 0.76
+}
+
+#[test]
+fn the_whole_swing_stays_in_view_at_lift_angles_over_90_degrees() {
+    use newtons_cradle::scene::view::fitted_camera;
+    // Balls swung to 120, 150 and 179 degrees rise above the rails; the
+    // fitted view keeps each ball's whole swing (both sides, up to the lift
+    // angle) clear of the window's status and help bands.
+    for angle in [60.0, 120.0, 150.0, 179.0] {
+        for lift in [1, 2, 5] {
+            let mut config = Config::default();
+            config.start.lift = lift;
+            config.start.angle_deg = angle;
+            let cam = fitted_camera(&config);
+            let c = &config.cradle;
+            let (w, h) = (config.render.width, config.render.height);
+            let first = -0.5 * (c.balls as f64 - 1.0) * 2.0 * c.radius;
+            for i in [0, c.balls - 1] {
+                let pivot =
+                    glam::DVec3::new(first + i as f64 * 2.0 * c.radius, c.pivot_height, 0.0);
+                for k in 0..=36 {
+                    let theta = (f64::from(k) / 18.0 - 1.0) * angle.to_radians();
+                    let centre =
+                        pivot + c.length * glam::DVec3::new(theta.sin(), -theta.cos(), 0.0);
+                    for edge in [
+                        glam::DVec3::Y,
+                        -glam::DVec3::Y,
+                        glam::DVec3::X,
+                        -glam::DVec3::X,
+                    ] {
+                        let (sx, sy, depth) = view_coords(&cam, w, h, centre + edge * c.radius);
+                        assert!(
+                            depth > 0.0 && sx.abs() < 0.95 && in_band(sy),
+                            "lift {lift} at {angle}: ball {i} at {theta:.2} rad out at ({sx:.3}, {sy:.3})"
+                        );
+                    }
+                }
+            }
+        }
     }
 }
 

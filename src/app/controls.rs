@@ -103,9 +103,57 @@ impl Controls {
     }
 }
 
+/// Changes within this long of the one before are one step of the history:
+/// a slider's drag is one change, not one per frame.
+pub const ONE_CHANGE: std::time::Duration = std::time::Duration::from_millis(700);
+
+/// The most steps the history keeps.
+const STEPS: usize = 64;
+
+/// The states before the panel's last changes, newest last, for Ctrl+Z.
+#[derive(Debug)]
+pub struct History<T> {
+    steps: Vec<T>,
+    /// When the last change was recorded.
+    last: Option<std::time::Instant>,
+}
+
+impl<T> Default for History<T> {
+    fn default() -> Self {
+        Self {
+            steps: Vec::new(),
+            last: None,
+        }
+    }
+}
+
+impl<T> History<T> {
+    /// `before`, the state a change at `now` leaves, unless the change before
+    /// came within [`ONE_CHANGE`] (then both undo as one).
+    pub fn record(&mut self, before: T, now: std::time::Instant) {
+        let joined = self
+            .last
+            .is_some_and(|t| now.saturating_duration_since(t) < ONE_CHANGE);
+        self.last = Some(now);
+        if joined && !self.steps.is_empty() {
+            return;
+        }
+        if self.steps.len() == STEPS {
+            self.steps.remove(0);
+        }
+        self.steps.push(before);
+    }
+
+    /// The state before the last change, taken off the history.
+    pub fn undo(&mut self) -> Option<T> {
+        self.last = None;
+        self.steps.pop()
+    }
+}
+
 #[cfg(test)]
 mod tests {
-    use super::{Apply, Controls};
+    use super::{Apply, Controls, History};
     use crate::config::{Config, ContactModel};
 
     #[test]
@@ -126,5 +174,21 @@ mod tests {
         bad.restitution = 0.5;
         let e = bad.apply_to(&c).expect_err("refused");
         assert!(e.contains("contact.restitution"), "{e}");
+    }
+
+    #[test]
+    fn quick_changes_undo_as_one_and_slow_ones_one_by_one() {
+        let t0 = std::time::Instant::now();
+        let ms = |m| t0 + std::time::Duration::from_millis(m);
+        let mut h = History::default();
+        // A slider dragged through 1, 2, 3 in quick frames: one step back to 1.
+        h.record(1, ms(0));
+        h.record(2, ms(16));
+        h.record(3, ms(32));
+        // A second change two seconds later: its own step.
+        h.record(4, ms(2000));
+        assert_eq!(h.undo(), Some(4));
+        assert_eq!(h.undo(), Some(1));
+        assert_eq!(h.undo(), None);
     }
 }

@@ -6,10 +6,10 @@ use super::UserEvent;
 use super::mouse::Mouse;
 use super::session::{Effect, Session};
 use super::surface::Surface;
-use super::{keys, screenshot};
+use super::{keys, notice, screenshot};
 use winit::application::ApplicationHandler;
 use winit::event::{ElementState, MouseButton, WindowEvent};
-use winit::event_loop::{ActiveEventLoop, ControlFlow};
+use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoopProxy};
 use winit::window::WindowId;
 
 /// The running app: the session, and the window once it exists.
@@ -17,6 +17,10 @@ pub struct App {
     session: Session,
     surface: Option<Surface>,
     mouse: Mouse,
+    /// Ctrl is held (Ctrl+Z).
+    ctrl: bool,
+    /// Wakes the loop from other threads (a screenshot saved).
+    proxy: EventLoopProxy<UserEvent>,
     /// Why the loop was ended early, returned by `run`.
     pub failure: Option<anyhow::Error>,
 }
@@ -24,13 +28,35 @@ pub struct App {
 impl App {
     /// An app for `session`; the window opens when the loop starts. Its
     /// frames trace while the one before is drawn ([`Session::pipeline`]).
-    pub fn new(mut session: Session) -> Self {
+    pub fn new(mut session: Session, proxy: EventLoopProxy<UserEvent>) -> Self {
         session.pipeline();
         Self {
             session,
             surface: None,
             mouse: Mouse::default(),
+            ctrl: false,
+            proxy,
             failure: None,
+        }
+    }
+
+    /// Saves what the window shows: with the HUD on, the picture with it (and
+    /// any notice); with the HUD off, the bare picture. A notice says where.
+    fn screenshot(&self) {
+        let Some(surface) = &self.surface else {
+            return;
+        };
+        let r = &self.session.config().render;
+        let proxy = self.proxy.clone();
+        let done = move |saved| {
+            // The loop has ended when this fails: nobody to tell.
+            let _ = proxy.send_event(UserEvent::Saved(saved));
+        };
+        match self.session.image() {
+            Some(img) if !self.session.hud_on() => {
+                screenshot::save(img.width, img.height, &img.rgba, done);
+            }
+            _ => screenshot::save(r.width, r.height, &surface.frame(), done),
         }
     }
 
@@ -60,6 +86,16 @@ impl ApplicationHandler<UserEvent> for App {
 
     fn user_event(&mut self, _event_loop: &ActiveEventLoop, event: UserEvent) {
         match event {
+            UserEvent::Saved(Ok(name)) => {
+                self.session
+                    .notify(format!("saved screenshot {name}"), notice::GOOD);
+                self.redraw();
+            }
+            UserEvent::Saved(Err(e)) => {
+                self.session
+                    .notify(format!("screenshot not saved: {e}"), notice::BAD);
+                self.redraw();
+            }
             UserEvent::Reload => {
                 let surface = &mut self.surface;
                 self.session.reload(|w, h| match surface {
@@ -76,10 +112,9 @@ impl ApplicationHandler<UserEvent> for App {
             return;
         };
         // The panel sees events first; what it takes (a click on a slider, typing
-        // in a field) is not ours, but Tab always toggles it.
-        let tab = matches!(&event, WindowEvent::KeyboardInput { event: k, .. }
-            if k.logical_key == winit::keyboard::Key::Named(winit::keyboard::NamedKey::Tab));
-        if self.session.panel_open() && surface.panel_event(&event) && !tab {
+        // in a field) is not ours. Keys reach it only while a field is edited,
+        // and Tab never does (`Panel::event`).
+        if self.session.panel_open() && surface.panel_event(&event) {
             surface.request_redraw();
             return;
         }
@@ -107,20 +142,25 @@ impl ApplicationHandler<UserEvent> for App {
                 if is_synthetic || event.state != ElementState::Pressed || event.repeat {
                     return;
                 }
-                let Some(action) = keys::action(&event.logical_key) else {
+                let Some(action) = keys::action(&event.logical_key, self.ctrl) else {
                     return;
                 };
                 match self.session.act(action) {
                     Effect::Redraw => {}
-                    Effect::Screenshot => {
-                        let r = &self.session.config().render;
-                        screenshot::save(r.width, r.height, &surface.frame());
-                    }
+                    Effect::Screenshot => self.screenshot(),
                     Effect::Quit => event_loop.exit(),
                 }
-                surface.request_redraw();
+                if let Some(surface) = &mut self.surface {
+                    if !self.session.panel_open() {
+                        surface.close_panel();
+                    }
+                    surface.request_redraw();
+                }
             }
-            WindowEvent::ModifiersChanged(m) => self.mouse.shift(m.state().shift_key()),
+            WindowEvent::ModifiersChanged(m) => {
+                self.mouse.shift(m.state().shift_key());
+                self.ctrl = m.state().control_key();
+            }
             WindowEvent::MouseInput { button, state, .. } => {
                 self.mouse.button(button, state);
                 if button == MouseButton::Left {
@@ -159,8 +199,8 @@ impl ApplicationHandler<UserEvent> for App {
                 if panel {
                     surface.prepare_panel(&mut self.session);
                 }
-                let lines = self.session.hud_lines();
-                surface.upload(self.session.image(), self.session.changes(), &lines);
+                let overlay = self.session.overlay(std::time::Instant::now());
+                surface.upload(self.session.image(), self.session.changes(), &overlay);
                 // The next frame traces while this one is drawn.
                 self.session.launch();
                 if let Err(e) = surface.draw(panel) {
@@ -186,6 +226,18 @@ impl ApplicationHandler<UserEvent> for App {
             if std::time::Instant::now() < until {
                 event_loop.set_control_flow(ControlFlow::WaitUntil(until));
             } else if surface.visible() {
+                surface.request_redraw();
+            }
+        }
+        // A notice on screen goes when its time is up, paused or not.
+        if let Some(until) = self.session.notice_expires() {
+            if std::time::Instant::now() < until {
+                let sooner = match event_loop.control_flow() {
+                    ControlFlow::WaitUntil(t) => t.min(until),
+                    _ => until,
+                };
+                event_loop.set_control_flow(ControlFlow::WaitUntil(sooner));
+            } else {
                 surface.request_redraw();
             }
         }

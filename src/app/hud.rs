@@ -1,12 +1,27 @@
 //! The HUD: lines of text drawn into the CPU frame (so screenshots show it), with
-//! an 8x8 bitmap font at 2x. A few hundred glyphs a frame: microseconds.
+//! an 8x8 bitmap font. A few hundred glyphs a frame: microseconds.
+//!
+//! The layout keeps the cradle clear: the status sits in the top band and the
+//! key help and notices in the bottom band, the bands the fitted camera keeps
+//! the swing out of (`scene::view::FIT_TOP`, `FIT_BOTTOM`).
 
+use super::keys::HELP;
+use super::session::Overlay;
 use font8x8::{BASIC_FONTS, UnicodeFonts};
 
-/// Pixels per font pixel.
-const SCALE: usize = 2;
-/// Height of one text line in pixels.
-pub const LINE: usize = 10 * SCALE;
+/// Height of one text line in font pixels (8 of glyph, 2 of space).
+const LINE_UNITS: usize = 10;
+
+/// A box drawn over the picture: left, top, width and height in pixels.
+pub type Rect = (usize, usize, usize, usize);
+
+/// The font's scale for a `width x height` picture: 2x where the status
+/// lines fit across it and within the top band the fitted camera keeps clear
+/// (12% of 570 pixels holds three lines of 20), else 1x.
+#[must_use]
+pub fn scale_for(width: usize, height: usize) -> usize {
+    if width >= 800 && height >= 570 { 2 } else { 1 }
+}
 
 /// An RGBA8 (or BGRA8) frame to draw into.
 pub struct Canvas<'a> {
@@ -18,6 +33,8 @@ pub struct Canvas<'a> {
     pub height: usize,
     /// The bytes are in BGRA order (colours are given as RGB all the same).
     pub bgra: bool,
+    /// Pixels per font pixel.
+    pub scale: usize,
 }
 
 impl Canvas<'_> {
@@ -50,15 +67,16 @@ impl Canvas<'_> {
             let Some(glyph) = BASIC_FONTS.get(ch) else {
                 continue;
             };
-            let gx = x + n * 8 * SCALE;
+            let scale = self.scale;
+            let gx = x + n * 8 * scale;
             for (row, bits) in glyph.iter().enumerate() {
                 for col in 0..8 {
                     if bits & (1 << col) == 0 {
                         continue;
                     }
-                    for dy in 0..SCALE {
-                        for dx in 0..SCALE {
-                            let (px, py) = (gx + col * SCALE + dx, y + row * SCALE + dy);
+                    for dy in 0..scale {
+                        for dx in 0..scale {
+                            let (px, py) = (gx + col * scale + dx, y + row * scale + dy);
                             if px < self.width && py < self.height {
                                 let i = (py * self.width + px) * 4;
                                 self.rgba[i..i + 3].copy_from_slice(&color);
@@ -70,23 +88,87 @@ impl Canvas<'_> {
         }
     }
 
-    /// Draws lines of text in a shaded box at the top-left, wrapped at the frame's
-    /// width (a long config error keeps its allowed range); returns the box's
-    /// width and height.
-    pub fn panel(&mut self, y: usize, lines: &[(String, [u8; 3])]) -> (usize, usize) {
-        let lines = wrap(lines, (self.width.saturating_sub(16) / (8 * SCALE)).max(8));
+    /// Height of a text line in pixels.
+    #[must_use]
+    pub fn line(&self) -> usize {
+        LINE_UNITS * self.scale
+    }
+
+    /// Draws lines of text in a shaded box with its top-left corner at
+    /// `(x, y)`, wrapped at the frame's width (a long config error keeps its
+    /// allowed range); returns the box.
+    pub fn boxed(&mut self, x: usize, y: usize, lines: &[(String, [u8; 3])]) -> Rect {
+        let glyph = 8 * self.scale;
+        let lines = wrap(lines, (self.width.saturating_sub(16 + x) / glyph).max(8));
         let longest = lines
             .iter()
             .map(|(l, _)| l.chars().count())
             .max()
             .unwrap_or(0);
-        let (w, h) = (longest * 8 * SCALE + 16, lines.len() * LINE + 8);
-        self.shade(0, y, w, h);
+        let (w, h) = (longest * glyph + 16, lines.len() * self.line() + 8);
+        self.shade(x, y, w, h);
         for (i, (line, color)) in lines.iter().enumerate() {
-            self.text(8, y + 4 + i * LINE, line, *color);
+            self.text(x + 8, y + 4 + i * self.line(), line, *color);
         }
-        (w, h)
+        (x, y, w.min(self.width.saturating_sub(x)), h)
     }
+
+    /// The height of the box [`Self::boxed`] draws for `lines`.
+    fn boxed_height(&self, lines: usize) -> usize {
+        lines * self.line() + 8
+    }
+
+    /// Draws `overlay`: the status at the top left, the key help in columns
+    /// at the bottom (in the font's smaller size), the notices at the bottom
+    /// left above it. Returns the boxes drawn.
+    pub fn overlay(&mut self, overlay: &Overlay) -> Vec<Rect> {
+        let mut drawn = Vec::new();
+        if !overlay.status.is_empty() {
+            drawn.push(self.boxed(0, 0, &overlay.status));
+        }
+        let mut bottom = self.height;
+        if overlay.help {
+            let scale = std::mem::replace(&mut self.scale, 1);
+            let lines = help_columns(self.width.saturating_sub(16) / 8);
+            let h = self.boxed_height(lines.len());
+            let w = lines.first().map_or(0, |(l, _)| l.chars().count() * 8 + 16);
+            let x = self.width.saturating_sub(w) / 2;
+            bottom = self.height.saturating_sub(h);
+            drawn.push(self.boxed(x, bottom, &lines));
+            self.scale = scale;
+        }
+        if !overlay.notices.is_empty() {
+            let h = self.boxed_height(overlay.notices.len());
+            drawn.push(self.boxed(0, bottom.saturating_sub(h), &overlay.notices));
+        }
+        drawn
+    }
+}
+
+/// The key help laid out in as many columns as fit in `chars` characters,
+/// row by row.
+#[must_use]
+pub fn help_columns(chars: usize) -> Vec<(String, [u8; 3])> {
+    let keys = HELP.iter().map(|(k, _)| k.len()).max().unwrap_or(0);
+    let what = HELP.iter().map(|(_, w)| w.len()).max().unwrap_or(0);
+    let cell = keys + 1 + what;
+    let columns = ((chars + 3) / (cell + 3)).clamp(1, HELP.len());
+    let rows = HELP.len().div_ceil(columns);
+    (0..rows)
+        .map(|r| {
+            let cells: Vec<String> = (0..columns)
+                .filter_map(|c| HELP.get(c * rows + r))
+                .map(|(k, w)| format!("{k:<keys$} {w:<what$}"))
+                .collect();
+            (cells.join("   ").trim_end().to_string(), [200, 210, 220])
+        })
+        .map(|(line, color)| {
+            (
+                format!("{line:<width$}", width = columns * (cell + 3) - 3),
+                color,
+            )
+        })
+        .collect()
 }
 
 /// `lines` broken at spaces (or mid-word when a word is longer) into lines of at
@@ -120,7 +202,9 @@ pub fn wrap(lines: &[(String, [u8; 3])], chars: usize) -> Vec<(String, [u8; 3])>
 
 #[cfg(test)]
 mod tests {
-    use super::{Canvas, wrap};
+    use super::{Canvas, help_columns, wrap};
+    use crate::app::keys::HELP;
+    use crate::app::session::Overlay;
 
     #[test]
     fn the_shade_darkens_the_box_to_a_third_and_clips_at_the_frame() {
@@ -130,6 +214,7 @@ mod tests {
             width: 8,
             height: 4,
             bgra: false,
+            scale: 2,
         };
         // From (5, 2), 6 wide and 6 high: clipped to pixels 5..8 of rows 2..4.
         canvas.shade(5, 2, 6, 6);
@@ -151,6 +236,7 @@ mod tests {
                 width: 32,
                 height: 32,
                 bgra,
+                scale: 2,
             };
             canvas.text(0, 0, "#", [200, 100, 50]);
             let lit: Vec<&[u8]> = rgba.chunks_exact(4).filter(|p| p[..3] != [0; 3]).collect();
@@ -180,5 +266,61 @@ mod tests {
             long.iter().map(|(l, _)| l.len()).collect::<Vec<_>>(),
             [20, 20, 5]
         );
+    }
+
+    #[test]
+    fn the_help_lists_every_entry_once_in_columns_that_fit() {
+        for chars in [40, 100, 148, 300] {
+            let lines = help_columns(chars);
+            let text: String = lines
+                .iter()
+                .map(|(l, _)| l.as_str())
+                .collect::<Vec<_>>()
+                .join("\n");
+            // Keys are padded to the longest, then one space, then what they do.
+            let keys = HELP.iter().map(|(k, _)| k.len()).max().unwrap_or(0);
+            for (k, w) in HELP {
+                let entry = format!("{k:<keys$} {w}");
+                assert_eq!(text.matches(&entry).count(), 1, "{entry} once at {chars}");
+            }
+            let widest = lines
+                .iter()
+                .map(|(l, _)| l.chars().count())
+                .max()
+                .unwrap_or(0);
+            assert!(widest <= chars.max(40), "{widest} > {chars}");
+        }
+        assert!(
+            help_columns(148).len() < help_columns(40).len(),
+            "wider: fewer rows"
+        );
+    }
+
+    #[test]
+    fn status_goes_top_left_help_and_notices_at_the_bottom() {
+        let (w, h) = (1200, 600);
+        let mut rgba = vec![0u8; w * h * 4];
+        let mut canvas = Canvas {
+            rgba: &mut rgba,
+            width: w,
+            height: h,
+            bgra: false,
+            scale: 2,
+        };
+        let overlay = Overlay {
+            status: vec![("RUNNING".into(), [255; 3]), ("balls 5".into(), [255; 3])],
+            help: true,
+            notices: vec![("saved x.png".into(), [255; 3])],
+        };
+        let boxes = canvas.overlay(&overlay);
+        assert_eq!(boxes.len(), 3);
+        let (status, help, notice) = (boxes[0], boxes[1], boxes[2]);
+        assert_eq!((status.0, status.1), (0, 0));
+        assert_eq!(help.1 + help.3, h, "the help ends at the bottom edge");
+        assert_eq!(notice.1 + notice.3, help.1, "the notice sits on the help");
+        // The cradle is fitted between 12% and 88% of the height: the boxes
+        // stay in those bands at this size.
+        assert!(status.3 as f32 <= crate::scene::view::FIT_TOP * h as f32);
+        assert!(help.1 as f32 >= crate::scene::view::FIT_BOTTOM * h as f32);
     }
 }

@@ -25,13 +25,21 @@ pub enum Action {
     HomeView,
     /// Tab: the control panel on or off.
     Panel,
+    /// Ctrl+Z: undo the last change made in the panel (a preset included).
+    Undo,
     /// Escape: quit.
     Quit,
 }
 
-/// The action of a pressed key, if it has one.
+/// The action of a pressed key, with Ctrl held or not, if it has one.
 #[must_use]
-pub fn action(key: &Key) -> Option<Action> {
+pub fn action(key: &Key, ctrl: bool) -> Option<Action> {
+    if ctrl {
+        return match key {
+            Key::Character(c) if c.eq_ignore_ascii_case("z") => Some(Action::Undo),
+            _ => None,
+        };
+    }
     match key {
         Key::Named(NamedKey::Space) => Some(Action::TogglePause),
         Key::Named(NamedKey::ArrowLeft) => Some(Action::Lift(-1)),
@@ -56,20 +64,25 @@ pub fn action(key: &Key) -> Option<Action> {
     }
 }
 
-/// The help lines the HUD shows.
-pub const HELP: [&str; 12] = [
-    "SPACE  start / stop the swing",
-    "R      reset to the asset's start",
-    "LEFT / RIGHT  fewer / more lifted balls",
-    "DOWN / UP     fewer / more balls",
-    "H or F1  help / no HUD / status",
-    "S      save a screenshot (PNG)",
-    ", / .  half / twice the time rate",
-    "N      one frame while paused",
-    "mouse  right-drag turn, wheel zoom, middle-drag pan",
-    "C      back to the asset's view",
-    "TAB    the control panel",
-    "ESC    quit",
+/// The help the HUD shows: every key and mouse action, as (keys, what).
+pub const HELP: [(&str, &str); 17] = [
+    ("SPACE", "start / stop the swing"),
+    ("left-drag", "lift a ball; let go: swing"),
+    ("R", "reset cradle and time rate"),
+    ("LEFT/RIGHT", "fewer / more lifted"),
+    ("DOWN/UP", "fewer / more balls"),
+    (", / .", "half / twice time rate"),
+    ("N", "one frame while paused"),
+    ("right-drag", "turn the view"),
+    ("wheel", "zoom in / out"),
+    ("middle-drag", "move the view"),
+    ("shift+right", "move the view, too"),
+    ("C", "reset the view"),
+    ("TAB", "control panel, presets"),
+    ("CTRL+Z", "undo a panel change"),
+    ("S", "save a screenshot"),
+    ("H or F1", "help / no HUD / status"),
+    ("ESC", "quit (in a field: leave)"),
 ];
 
 #[cfg(test)]
@@ -80,6 +93,7 @@ mod tests {
     #[test]
     fn every_documented_key_has_its_action() {
         let ch = |c: &str| Key::Character(SmolStr::new(c));
+        let action = |k: &Key| action(k, false);
         assert_eq!(
             action(&Key::Named(NamedKey::Space)),
             Some(Action::TogglePause)
@@ -116,5 +130,14 @@ mod tests {
         assert_eq!(action(&ch("c")), Some(Action::HomeView));
         assert_eq!(action(&ch("x")), None);
         assert_eq!(action(&Key::Named(NamedKey::Tab)), Some(Action::Panel));
+    }
+
+    #[test]
+    fn ctrl_z_undoes_and_ctrl_leaves_the_other_keys_alone() {
+        let ch = |c: &str| Key::Character(SmolStr::new(c));
+        assert_eq!(action(&ch("z"), true), Some(Action::Undo));
+        assert_eq!(action(&ch("Z"), true), Some(Action::Undo));
+        assert_eq!(action(&ch("z"), false), None);
+        assert_eq!(action(&ch("s"), true), None, "Ctrl+S is not S");
     }
 }

@@ -11,6 +11,8 @@
 //! - `keys`, `mouse`, `orbit`, `drag`: the key map, drags and wheel, the
 //!   user's view, dragging balls.
 //! - `reload`, `screenshot`: the config watcher, S's PNGs.
+//! - `notice`, `presets`, `controls`: what an action did, shown for a moment;
+//!   the panel's presets and saved setups; the panel's settings and undo.
 //!
 //! The window, pixels and event loop stay out of the World, the physics and the
 //! tracer.
@@ -21,8 +23,10 @@ mod handler;
 pub mod hud;
 pub mod keys;
 pub mod mouse;
+pub mod notice;
 pub mod orbit;
 mod panel;
+pub mod presets;
 mod reload;
 pub mod screenshot;
 pub mod session;
@@ -33,10 +37,12 @@ use crate::config::{Config, ConfigSource};
 use winit::event_loop::{ControlFlow, EventLoop};
 
 /// Events from outside the window.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 enum UserEvent {
     /// The config file was saved.
     Reload,
+    /// A screenshot was saved (its file name) or not (why).
+    Saved(Result<String, String>),
 }
 
 /// Why the window could not run.
@@ -82,7 +88,10 @@ pub fn run(config: Config, source: ConfigSource, overrides: Common) -> anyhow::R
         }
         ConfigSource::Builtin => None,
     };
-    let mut app = handler::App::new(session::Session::new(config, source, overrides)?);
+    let mut app = handler::App::new(
+        session::Session::new(config, source, overrides)?,
+        event_loop.create_proxy(),
+    );
     event_loop.run_app(&mut app)?;
     app.failure.map_or(Ok(()), Err)
 }

@@ -3,7 +3,7 @@
 //! offsets that survive a respawn; C drops them. Window-free, in f64.
 
 use crate::config::{CameraConfig, Config};
-use crate::scene::view::{camera, fitted_camera};
+use crate::scene::view::{FIT_SIDE, camera, fitted_camera_within};
 use crate::trace;
 use glam::DVec3;
 
@@ -61,7 +61,14 @@ impl Orbit {
     /// The camera of `config` with these offsets.
     #[must_use]
     pub fn camera_config(&self, config: &Config) -> CameraConfig {
-        let mut cam = fitted_camera(config);
+        self.camera_config_within(config, 1.0 - FIT_SIDE)
+    }
+
+    /// The camera of `config` with these offsets, fitted left of `right` (a
+    /// share of the picture's width; the control panel covers the rest).
+    #[must_use]
+    pub fn camera_config_within(&self, config: &Config, right: f32) -> CameraConfig {
+        let mut cam = fitted_camera_within(config, right);
         if self.is_home() {
             return cam;
         }
@@ -89,10 +96,11 @@ impl Orbit {
         cam
     }
 
-    /// The tracer's camera of `config` with these offsets.
+    /// The tracer's camera of `config` with these offsets, fitted left of
+    /// `right` (see [`Self::camera_config_within`]).
     #[must_use]
-    pub fn camera(&self, config: &Config) -> trace::Camera {
-        camera(&self.camera_config(config))
+    pub fn camera(&self, config: &Config, right: f32) -> trace::Camera {
+        camera(&self.camera_config_within(config, right))
     }
 }
 

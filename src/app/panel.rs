@@ -4,12 +4,14 @@
 //! the session's rule, not the panel's.
 
 use super::controls::Controls;
+use super::presets::PRESETS;
 use super::session::Session;
 use crate::config::{ContactModel, MAX_ANGLE_DEG, MAX_BALLS};
 use crate::physics::Integrator;
 use egui::{ClippedPrimitive, Context, TexturesDelta, ViewportId};
 use egui_wgpu::{Renderer, RendererOptions, ScreenDescriptor};
 use pixels::{Pixels, PixelsContext, wgpu};
+use winit::keyboard::{Key, NamedKey};
 use winit::window::Window;
 
 /// egui's state over one window.
@@ -20,6 +22,9 @@ pub struct Panel {
     renderer: Renderer,
     paint_jobs: Vec<ClippedPrimitive>,
     textures: TexturesDelta,
+    /// A text field (a slider's typed value) had the keyboard at the end of
+    /// the last frame: only then do keys go to the panel.
+    editing: bool,
 }
 
 impl Panel {
@@ -51,13 +56,27 @@ impl Panel {
             ),
             paint_jobs: Vec::new(),
             textures: TexturesDelta::default(),
+            editing: false,
         }
     }
 
     /// Feeds a window event to egui; true when egui took it (a click on the
-    /// panel is not a drag of the view).
+    /// panel is not a drag of the view). Keys go to egui only while a text
+    /// field is being edited, and Tab never does: it is the app's key for the
+    /// panel, and egui would walk its focus through the fields with it.
     pub fn event(&mut self, window: &Window, event: &winit::event::WindowEvent) -> bool {
+        if let winit::event::WindowEvent::KeyboardInput { event: key, .. } = event
+            && (!self.editing || key.logical_key == Key::Named(NamedKey::Tab))
+        {
+            return false;
+        }
         self.state.on_window_event(window, event).consumed
+    }
+
+    /// The panel was hidden: no field keeps the keyboard.
+    pub fn close(&mut self) {
+        self.ctx.memory_mut(egui::Memory::stop_text_input);
+        self.editing = false;
     }
 
     /// The window's new size.
@@ -68,29 +87,43 @@ impl Panel {
     }
 
     /// Runs one egui frame over `session`: shows its settings and energies, and
-    /// applies what the user changed. True when egui wants another frame soon
-    /// (a new window is laid out on its second frame).
-    pub fn prepare(&mut self, window: &Window, session: &mut Session) -> bool {
+    /// applies what the user changed. Returns whether egui wants another frame
+    /// soon (a new window is laid out on its second frame), and the panel's
+    /// left edge in window pixels.
+    pub fn prepare(&mut self, window: &Window, session: &mut Session) -> (bool, Option<f32>) {
         let input = self.state.take_egui_input(window);
         let mut controls = session.controls();
         let before = controls.clone();
         let (shares, energy) = session.energies();
+        let custom = session.custom_start().map(str::to_owned);
+        let mut request = None;
+        let mut left = None;
         let output = self.ctx.run_ui(input, |ui| {
-            panel_ui(ui.ctx(), &mut controls, &shares, energy);
+            (request, left) = panel_ui(ui.ctx(), &mut controls, custom.as_deref(), &shares, energy);
         });
         if controls != before {
             session.apply_controls(&controls);
         }
+        match request {
+            Some(Request::Preset(i)) => session.load_preset(i),
+            Some(Request::SaveSetup) => session.save_setup(),
+            Some(Request::Undo) => {
+                session.act(crate::app::keys::Action::Undo);
+            }
+            None => {}
+        }
+        self.editing = self.ctx.text_edit_focused();
         self.textures.append(output.textures_delta);
         self.state
             .handle_platform_output(window, output.platform_output);
         self.paint_jobs = self
             .ctx
             .tessellate(output.shapes, self.screen.pixels_per_point);
-        output
+        let again = output
             .viewport_output
             .get(&ViewportId::ROOT)
-            .is_some_and(|v| v.repaint_delay.is_zero())
+            .is_some_and(|v| v.repaint_delay.is_zero());
+        (again, left.map(|l| l * self.screen.pixels_per_point))
     }
 
     /// Draws the panel over `target`, after pixels has drawn the picture.
@@ -138,15 +171,43 @@ impl Panel {
     }
 }
 
-/// The panel's widgets.
-fn panel_ui(ctx: &Context, c: &mut Controls, shares: &[f64], energy: (f64, f64)) {
-    egui::Window::new("Controls")
+/// What the panel asks of the session besides its settings.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Request {
+    /// Load preset `i` of [`PRESETS`].
+    Preset(usize),
+    /// Write the settings as a new asset.
+    SaveSetup,
+    /// Back to the state before the last change (as Ctrl+Z).
+    Undo,
+}
+
+/// The panel's widgets; `custom` says what a drag to the right lifted. Returns
+/// what the user asked for, and the panel's left edge (points).
+fn panel_ui(
+    ctx: &Context,
+    c: &mut Controls,
+    custom: Option<&str>,
+    shares: &[f64],
+    energy: (f64, f64),
+) -> (Option<Request>, Option<f32>) {
+    let mut request = None;
+    let shown = egui::Window::new("Controls")
         .anchor(egui::Align2::RIGHT_TOP, [-8.0, 8.0])
         .default_width(260.0)
         .show(ctx, |ui| {
-            ui.add(egui::Slider::new(&mut c.balls, 1..=MAX_BALLS).text("balls"));
+            request = presets_row(ui);
+            ui.separator();
+            ui.add(
+                egui::Slider::new(&mut c.balls, 1..=MAX_BALLS)
+                    .logarithmic(true)
+                    .text("balls"),
+            );
             let most = c.balls;
             ui.add(egui::Slider::new(&mut c.lift, 0..=most).text("lifted"));
+            if let Some(custom) = custom {
+                ui.label(format!("now lifted by a drag: {custom}"));
+            }
             ui.add(
                 egui::Slider::new(&mut c.angle_deg, 0.0..=MAX_ANGLE_DEG).text("lift angle (deg)"),
             );
@@ -188,20 +249,60 @@ fn panel_ui(ctx: &Context, c: &mut Controls, shares: &[f64], energy: (f64, f64))
                     }),
             );
             ui.separator();
-            let (left, error) = energy;
-            ui.label(format!(
-                "energy left {:.1}%, relative error {error:+.1e}",
-                100.0 * left
-            ));
-            egui::ScrollArea::vertical()
-                .max_height(200.0)
-                .show(ui, |ui| {
-                    for (i, share) in shares.iter().enumerate() {
-                        ui.add(
-                            egui::ProgressBar::new(share.clamp(0.0, 1.0) as f32)
-                                .text(format!("ball {i}: {:.1}%", 100.0 * share)),
-                        );
+            energy_bars(ui, shares, energy);
+        });
+    (request, shown.map(|s| s.response.rect.left()))
+}
+
+/// The presets list, "save setup" and "undo": what the user asked, if anything.
+fn presets_row(ui: &mut egui::Ui) -> Option<Request> {
+    let mut request = None;
+    ui.horizontal(|ui| {
+        egui::ComboBox::from_id_salt("preset")
+            .selected_text("load a preset")
+            .show_ui(ui, |ui| {
+                for (i, p) in PRESETS.iter().enumerate() {
+                    if ui.selectable_label(false, p.name).clicked() {
+                        request = Some(Request::Preset(i));
                     }
-                });
+                }
+            });
+        if ui
+            .button("save setup")
+            .on_hover_text("write these settings as a new .ron asset in the working folder")
+            .clicked()
+        {
+            request = Some(Request::SaveSetup);
+        }
+        if ui.button("undo").on_hover_text("Ctrl+Z").clicked() {
+            request = Some(Request::Undo);
+        }
+    });
+    request
+}
+
+/// The energy left with its error, and each ball's share as a bar.
+fn energy_bars(ui: &mut egui::Ui, shares: &[f64], (left, error): (f64, f64)) {
+    ui.label(format!(
+        "energy left {:.1}%, relative error {error:+.1e}",
+        100.0 * left
+    ));
+    egui::ScrollArea::vertical()
+        .max_height(200.0)
+        .show(ui, |ui| {
+            for (i, share) in shares.iter().enumerate() {
+                let share = share.clamp(0.0, 1.0) as f32;
+                let mut bar = egui::ProgressBar::new(share).text(format!(
+                    "ball {}: {:.1}%",
+                    i + 1,
+                    100.0 * share
+                ));
+                // egui draws at least a bar's height of fill: a ball at
+                // rest would show a stub.
+                if share < 0.005 {
+                    bar = bar.fill(egui::Color32::TRANSPARENT);
+                }
+                ui.add(bar);
+            }
         });
 }

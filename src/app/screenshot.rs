@@ -5,25 +5,34 @@ use crate::trace::Image;
 use std::path::Path;
 
 /// Saves the `width x height` RGBA8 `frame` on a thread of its own, so that
-/// encoding never stalls the swing; the log says where, or why not.
-pub fn save(width: u32, height: u32, frame: &[u8]) {
+/// encoding never stalls the swing; the log says where, or why not, and so
+/// does `done` (the file's name, or the error), on that thread.
+pub fn save(
+    width: u32,
+    height: u32,
+    frame: &[u8],
+    done: impl FnOnce(Result<String, String>) + Send + 'static,
+) {
     let img = Image {
         width,
         height,
         rgba: frame.to_vec(),
     };
-    let secs = std::time::SystemTime::now()
-        .duration_since(std::time::UNIX_EPOCH)
-        .map_or(0, |d| d.as_secs());
-    let stamp = utc_stamp(secs);
+    let stamp = stamp_now();
     std::thread::spawn(move || {
         // One name at a time, so two saves in one second cannot pick the same.
         static NAMING: std::sync::Mutex<()> = std::sync::Mutex::new(());
         let _guard = NAMING.lock();
         let name = free_name(&stamp, |n| Path::new(n).exists());
         match crate::export::write_png(Path::new(&name), &img) {
-            Ok(()) => tracing::info!("saved screenshot {name}"),
-            Err(e) => tracing::error!("screenshot not saved: {e}"),
+            Ok(()) => {
+                tracing::info!("saved screenshot {name}");
+                done(Ok(name));
+            }
+            Err(e) => {
+                tracing::error!("screenshot not saved: {e}");
+                done(Err(e.to_string()));
+            }
         }
     });
 }
@@ -33,13 +42,29 @@ pub fn save(width: u32, height: u32, frame: &[u8]) {
 #[must_use]
 pub fn free_name(stamp: &str, taken: impl Fn(&str) -> bool) -> String {
     let base = format!("newtons-cradle-{stamp}");
-    let mut name = format!("{base}.png");
-    let mut k = 2u64;
-    while taken(&name) {
-        name = format!("{base}-{k}.png");
-        k += 1;
+    (1..=u32::MAX)
+        .map(|k| numbered(&base, k, "png"))
+        .find(|n| !taken(n))
+        .expect("some numbered name is free")
+}
+
+/// The `k`-th name of a saved file: `BASE.EXT` for the first, `BASE-K.EXT` after.
+#[must_use]
+pub fn numbered(base: &str, k: u32, ext: &str) -> String {
+    if k <= 1 {
+        format!("{base}.{ext}")
+    } else {
+        format!("{base}-{k}.{ext}")
     }
-    name
+}
+
+/// `YYYYMMDD-HHMMSS` in UTC now.
+#[must_use]
+pub fn stamp_now() -> String {
+    let secs = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.as_secs());
+    utc_stamp(secs)
 }
 
 /// `YYYYMMDD-HHMMSS` in UTC for `secs` seconds since 1970-01-01.

@@ -3,10 +3,13 @@
 //! redraws; it steps the ECS world and the incremental tracer. Nothing here knows
 //! of winit or pixels, so its rules are unit-tested without a display.
 
+use super::controls::History;
 use super::fit_window;
 use super::keys::Action;
 use super::mouse::ViewChange;
+use super::notice::{self, Notices};
 use super::orbit::Orbit;
+use super::presets::{self, PRESETS};
 use crate::cli::{Common, InputError};
 use crate::config::{Config, ConfigSource, MAX_BALLS};
 use crate::scene::CradleWorld;
@@ -86,7 +89,20 @@ pub struct Session {
     /// When the view last moved: until it rests for [`VIEW_REST`], frames trace
     /// one sample per pixel, so a drag of the view keeps up.
     view_moved: Option<Instant>,
+    /// What the user just did, shown for a moment.
+    notices: Notices,
+    /// The lifted balls of a drag to the right, which the config's start (balls
+    /// lifted from the left) cannot say: "balls 4-5 at 31.0 deg right".
+    custom: Option<String>,
+    /// The states before the panel's last changes, for Ctrl+Z.
+    history: History<(Config, Config, f64)>,
+    /// The right edge (a share of the width) of the region the view fits the
+    /// cradle into: left of the control panel while it is open.
+    fit_right: f32,
 }
+
+/// The right edge of the fit region without the panel.
+const FULL_WIDTH: f32 = 1.0 - crate::scene::view::FIT_SIDE;
 
 /// How long the view must rest before frames are anti-aliased again.
 pub const VIEW_REST: std::time::Duration = std::time::Duration::from_millis(250);
@@ -128,6 +144,10 @@ impl Session {
             dragging: None,
             panel: false,
             view_moved: None,
+            notices: Notices::default(),
+            custom: None,
+            history: History::default(),
+            fit_right: FULL_WIDTH,
         })
     }
 
@@ -163,11 +183,15 @@ impl Session {
                 self.restart_clock();
             }
             Action::Reset => {
-                // Back to the asset's start: its ball and lift counts and run state.
+                // Back to the asset's start (ball and lift counts, run state) at
+                // the normal time rate; the view stays (C resets it).
                 self.config = self.asset.clone();
+                self.rate = 1.0;
+                self.custom = None;
                 self.world.respawn(&self.config);
                 self.show_view();
                 self.restart_clock();
+                self.notify("reset: the asset's start, time rate 1x", notice::GOOD);
             }
             Action::Lift(d) => {
                 let lift = self.config.start.lift.checked_add_signed(d as isize);
@@ -189,7 +213,13 @@ impl Session {
                 let e = (self.rate.log2().round() as i32 + d).clamp(*RATES.start(), *RATES.end());
                 self.rate = 2f64.powi(e);
             }
-            Action::Panel => self.panel = !self.panel,
+            Action::Panel => {
+                self.panel = !self.panel;
+                if !self.panel {
+                    self.set_panel_edge(None);
+                }
+            }
+            Action::Undo => self.undo(),
             Action::HomeView => {
                 self.orbit = Orbit::default();
                 self.show_view();
@@ -222,8 +252,22 @@ impl Session {
 
     /// Puts the user's view into the world; the next frame is traced in full.
     fn show_view(&mut self) {
-        self.world.set_camera(self.orbit.camera(&self.config));
+        self.world
+            .set_camera(self.orbit.camera(&self.config, self.fit_right));
         self.retrace = true;
+    }
+
+    /// Where the open control panel's left edge is (a share of the picture's
+    /// width), or `None` once it is closed: the view fits the cradle left of
+    /// it. Steps of 1/64 of the width, so the panel's own small changes of
+    /// size do not move the view.
+    pub fn set_panel_edge(&mut self, edge: Option<f32>) {
+        let right = edge.map_or(FULL_WIDTH, |e| ((e - 0.01) * 64.0).floor() / 64.0);
+        let right = right.clamp(0.3, FULL_WIDTH);
+        if right != self.fit_right {
+            self.fit_right = right;
+            self.show_view();
+        }
     }
 
     /// When the view, moved lately, will have rested: the next frame from then on
@@ -254,6 +298,7 @@ impl Session {
     /// A new world for the current config from the start position, keeping the
     /// swing running if it was.
     fn respawn(&mut self) {
+        self.custom = None;
         let running = self.running();
         self.world.respawn(&self.config);
         self.world.set_running(running);
@@ -281,6 +326,7 @@ impl Session {
             Err(e) => {
                 tracing::error!("config not reloaded: {e}");
                 self.error = Some(e.to_string());
+                self.notify("reload refused: the error is shown above", notice::BAD);
                 return;
             }
         };
@@ -290,6 +336,7 @@ impl Session {
         {
             tracing::error!("cannot resize the framebuffer to {w}x{h}: {e}");
             self.error = Some(format!("framebuffer {w}x{h}: {e}"));
+            self.notify("reload refused: the error is shown above", notice::BAD);
             return;
         }
         tracing::info!("reloaded {}", self.source);
@@ -304,6 +351,95 @@ impl Session {
         self.config = config;
         self.error = None;
         self.respawn();
+        self.notify(format!("reloaded {}", self.source), notice::GOOD);
+    }
+
+    /// Shows `text` for a moment (a notice), in `color`.
+    pub fn notify(&mut self, text: impl Into<String>, color: [u8; 3]) {
+        self.notices.show(text, color, Instant::now());
+    }
+
+    /// When a notice on screen goes: the window wakes then to clear it.
+    #[must_use]
+    pub fn notice_expires(&self) -> Option<Instant> {
+        self.notices.next_change()
+    }
+
+    /// Loads preset `index` of [`PRESETS`] in place of the asset (keeping the
+    /// window's picture size), from its start position; Ctrl+Z undoes it.
+    pub fn load_preset(&mut self, index: usize) {
+        let Some(preset) = PRESETS.get(index) else {
+            return;
+        };
+        match preset.config(&self.config) {
+            Ok(c) => {
+                self.remember();
+                self.asset = c.clone();
+                self.config = c;
+                self.error = None;
+                self.respawn();
+                self.notify(format!("preset loaded: {}", preset.name), notice::GOOD);
+            }
+            Err(e) => {
+                tracing::error!("preset {} not loaded: {e}", preset.name);
+                self.notify(
+                    format!("preset {} not loaded: {e}", preset.name),
+                    notice::BAD,
+                );
+            }
+        }
+    }
+
+    /// Writes the settings shown now as a new asset in the working directory
+    /// (never replacing a file); a notice says where.
+    pub fn save_setup(&mut self) {
+        let stamp = super::screenshot::stamp_now();
+        match presets::save_setup(&self.config, std::path::Path::new("."), &stamp) {
+            Ok(path) => {
+                let name = path.file_name().map_or_else(
+                    || path.display().to_string(),
+                    |n| n.to_string_lossy().into_owned(),
+                );
+                tracing::info!("saved setup {}", path.display());
+                self.notify(
+                    format!("saved setup {name} (run it: --config {name})"),
+                    notice::GOOD,
+                );
+            }
+            Err(e) => {
+                tracing::error!("setup not saved: {e}");
+                self.notify(format!("setup not saved: {e}"), notice::BAD);
+            }
+        }
+    }
+
+    /// Keeps the state before a change of the panel's for Ctrl+Z.
+    fn remember(&mut self) {
+        let state = (self.asset.clone(), self.config.clone(), self.rate);
+        self.history.record(state, Instant::now());
+    }
+
+    /// Ctrl+Z: back to the state before the panel's last change.
+    fn undo(&mut self) {
+        let Some((asset, config, rate)) = self.history.undo() else {
+            self.notify("nothing to undo", notice::BAD);
+            return;
+        };
+        self.rate = rate;
+        self.asset = asset;
+        let mut live = self.config.clone();
+        live.render.samples = config.render.samples;
+        live.render.adaptive = config.render.adaptive;
+        let restart = live != config;
+        self.config = config;
+        self.error = None;
+        if restart {
+            self.respawn();
+        } else {
+            self.apply_quality();
+            self.retrace = true;
+        }
+        self.notify("undone: the last panel change", notice::GOOD);
     }
 
     /// While running, frames from now on trace on the pool one frame behind: the
@@ -381,6 +517,8 @@ mod editing;
 mod rate_log;
 mod status;
 mod tracer;
+
+pub use status::Overlay;
 
 /// Exponential smoothing over ~10 frames keeps the HUD's numbers readable.
 fn smooth(old: f64, new: f64) -> f64 {

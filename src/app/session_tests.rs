@@ -113,6 +113,119 @@ fn counts_stay_in_range_and_reset_restores_the_asset() {
 }
 
 #[test]
+fn a_drag_from_the_left_becomes_the_lifted_count_and_angle() {
+    use crate::scene::spawn::Layout;
+    use crate::trace::camera::CameraRays;
+    use glam::DVec3;
+    let mut s = session();
+    s.step(Instant::now());
+    let c = s.config().clone();
+    let rays = CameraRays::new(&s.world.scene().camera, c.render.width, c.render.height);
+    let layout = Layout::new(&c);
+    // Ball 3 (the middle one, at rest) pulled out to the left lifts balls 1..=3.
+    let centre = layout.pivot(2) + DVec3::new(0.0, -c.cradle.length, 0.0);
+    let (x, y) = rays.project(centre.as_vec3()).expect("in view");
+    assert!(s.grab((f64::from(x), f64::from(y))));
+    let target = layout.pivot(2) + DVec3::new(-0.1, -0.1, 0.0);
+    let (x, y) = rays.project(target.as_vec3()).expect("in view");
+    assert!(s.drag_to((f64::from(x), f64::from(y))));
+    let theta = s.world.cradle().snapshot.theta.clone();
+    assert_eq!(s.config().start.lift, 3);
+    // The angle of the pulled balls, to the degree shown (the pixel's ray is f32).
+    assert!(
+        (s.config().start.angle_deg - 45.0).abs() < 0.5,
+        "{}",
+        s.config().start.angle_deg
+    );
+    assert_eq!(s.config().start.angle_deg, theta[2].abs().to_degrees());
+    let hud = s.hud_lines();
+    assert!(
+        hud[1].0.contains(&format!(
+            "lifted 3 at {:.1} deg",
+            s.config().start.angle_deg
+        )),
+        "{hud:?}"
+    );
+    assert_eq!(s.controls().lift, 3, "the panel shows it too");
+    s.release();
+    assert!(s.running());
+}
+
+#[test]
+fn reset_goes_back_to_the_normal_time_rate_and_says_so() {
+    let mut s = session();
+    s.act(Action::Rate(1));
+    s.act(Action::Rate(1));
+    assert_eq!(s.rate(), 4.0);
+    s.act(Action::Reset);
+    assert_eq!(s.rate(), 1.0);
+    let notices = s.overlay(Instant::now()).notices;
+    assert!(
+        notices.iter().any(|(t, _)| t.contains("reset")),
+        "{notices:?}"
+    );
+}
+
+#[test]
+fn presets_load_in_place_and_ctrl_z_undoes_panel_changes() {
+    let mut s = session();
+    let start = s.config().clone();
+    let realistic = crate::app::presets::PRESETS
+        .iter()
+        .position(|p| p.name == "realistic")
+        .expect("listed");
+    s.load_preset(realistic);
+    assert!(s.config().cradle_params().dissipative());
+    assert_eq!(
+        (s.config().render.width, s.config().render.height),
+        (32, 16),
+        "the window's size stays"
+    );
+    let notices = s.overlay(Instant::now()).notices;
+    assert!(
+        notices.iter().any(|(t, _)| t == "preset loaded: realistic"),
+        "{notices:?}"
+    );
+    // R now returns to the preset's start.
+    s.act(Action::Reset);
+    assert!(s.config().cradle_params().dissipative());
+    s.act(Action::Undo);
+    assert_eq!(s.config(), &start, "undo: the cradle before the preset");
+    // A panel edit, undone; then nothing left to undo.
+    let mut c = s.controls();
+    c.balls = 9;
+    s.apply_controls(&c);
+    assert_eq!(s.config().cradle.balls, 9);
+    s.act(Action::Undo);
+    assert_eq!(s.config(), &start);
+    s.act(Action::Undo);
+    assert_eq!(s.config(), &start);
+    let notices = s.overlay(Instant::now()).notices;
+    assert!(
+        notices.iter().any(|(t, _)| t == "nothing to undo"),
+        "{notices:?}"
+    );
+}
+
+#[test]
+fn a_refused_panel_value_shows_a_notice_and_changes_nothing() {
+    let mut s = session();
+    let before = s.config().clone();
+    let mut c = s.controls();
+    c.contact = crate::config::ContactModel::Hertz;
+    c.restitution = 0.5;
+    s.apply_controls(&c);
+    assert_eq!(s.config(), &before);
+    let notices = s.overlay(Instant::now()).notices;
+    assert!(
+        notices
+            .iter()
+            .any(|(t, _)| t.starts_with("not applied:") && t.contains("contact.restitution")),
+        "{notices:?}"
+    );
+}
+
+#[test]
 fn window_actions_are_left_to_the_window() {
     let mut s = session();
     assert_eq!(s.act(Action::Screenshot), Effect::Screenshot);
@@ -125,10 +238,13 @@ fn hud_cycles_status_help_and_off_but_errors_stay() {
     s.step(Instant::now());
     let status = s.hud_lines();
     assert!(status[0].0.contains("PAUSED"), "{:?}", status[0]);
+    assert!(!s.overlay(Instant::now()).help);
     s.act(Action::ToggleHud);
-    assert!(s.hud_lines().len() > status.len(), "help adds the key list");
+    assert!(s.overlay(Instant::now()).help, "help adds the key list");
+    assert!(!s.hud_lines().is_empty(), "with the status");
     s.act(Action::ToggleHud);
     assert!(s.hud_lines().is_empty(), "off shows nothing");
+    assert!(!s.overlay(Instant::now()).help);
     s.error = Some("line 3".into());
     assert_eq!(
         s.hud_lines().len(),
@@ -251,6 +367,19 @@ fn dragging_the_right_end_ball_lifts_it_and_letting_go_swings_it() {
     // The asset lifts ball 0: the drag's state replaces it.
     assert!(theta[..last].iter().all(|&t| t == 0.0), "{theta:?}");
     assert!(!s.running(), "held while dragged");
+    let hud = s.hud_lines();
+    assert!(
+        hud[0].0.contains("HOLDING ball 5: let go to swing"),
+        "{hud:?}"
+    );
+    // The HUD says what the drag made, not the asset's "lifted 1 at 30".
+    let deg = theta[last].to_degrees();
+    assert!(
+        hud[1]
+            .0
+            .contains(&format!("lifted custom (ball 5 at {deg:.1} deg right)")),
+        "{hud:?}"
+    );
     s.release();
     assert!(s.running(), "let go, it swings");
     let now = frames(&mut s, Instant::now(), 12);
@@ -273,14 +402,14 @@ fn a_lossy_cradle_shows_the_energy_left_and_the_panel_sets_the_losses() {
     s.step(now);
     s.act(Action::TogglePause);
     s.step(now);
-    let full = s.hud_lines()[2].0.clone();
+    let full = s.hud_lines()[1].0.clone();
     assert!(full.contains("energy left 100.0%"), "{full}");
     // Two seconds: a few strikes, each losing some percent.
     frames(&mut s, now, 120);
     let (_, (left, error)) = s.energies();
     assert!(left < 0.9 && left > 0.0, "{left}");
     assert!(error.abs() < 1e-8, "the balance holds: {error}");
-    let line = s.hud_lines()[2].0.clone();
+    let line = s.hud_lines()[1].0.clone();
     assert!(
         line.contains(&format!("energy left {:.1}%", 100.0 * left)),
         "{line}"
@@ -292,7 +421,7 @@ fn a_lossy_cradle_shows_the_energy_left_and_the_panel_sets_the_losses() {
     c.air_density = 0.0;
     s.apply_controls(&c);
     assert!(!s.config().cradle_params().dissipative());
-    assert!(s.hud_lines()[2].0.contains("energy err"));
+    assert!(s.hud_lines()[1].0.contains("energy err"));
     let mut bad = s.controls();
     bad.contact = crate::config::ContactModel::Ideal;
     bad.dissipation = 1e-6;

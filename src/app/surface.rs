@@ -17,9 +17,9 @@
 //! surface instead of drawing it (`formats`).
 
 use super::WindowError;
-use super::hud::Canvas;
+use super::hud::{Canvas, scale_for};
 use super::panel::Panel;
-use super::session::{HudLine, Session};
+use super::session::{Overlay, Session};
 use crate::trace::{Changes, Image};
 use pixels::wgpu::TextureFormat;
 use pixels::{Pixels, PixelsBuilder, SurfaceTexture};
@@ -176,13 +176,28 @@ impl Surface {
             .is_some_and(|p| p.event(&self.window, event))
     }
 
+    /// The panel was hidden: its fields let go of the keyboard.
+    pub fn close_panel(&mut self) {
+        if let Some(p) = &mut self.panel {
+            p.close();
+        }
+    }
+
     /// Runs the control panel's frame over `session` (before `present`); asks
-    /// for another frame when egui wants one.
+    /// for another frame when egui wants one, and tells the session where
+    /// the panel's left edge falls on the picture (the view keeps the cradle
+    /// left of it).
     pub fn prepare_panel(&mut self, session: &mut Session) {
         let (window, pixels) = (&self.window, &self.pixels);
         let panel = self.panel.get_or_insert_with(|| Panel::new(window, pixels));
-        if panel.prepare(window, session) {
+        let (again, left) = panel.prepare(window, session);
+        if again {
             self.window.request_redraw();
+        }
+        let width = self.pixels.context().texture_extent.width;
+        if let Some(left) = left {
+            let (x, _) = self.pixel((f64::from(left), 0.0));
+            session.set_panel_edge(Some((x / f64::from(width.max(1))) as f32));
         }
     }
 
@@ -213,13 +228,13 @@ impl Surface {
     }
 
     /// Puts `image` (whose frame's `changes` say which pixels it changed, so
-    /// that only those are copied) with `lines` of HUD over it in the
+    /// that only those are copied) with the HUD's `overlay` over it in the
     /// framebuffer, for [`Self::draw`].
     pub fn upload(
         &mut self,
         image: Option<&Image>,
         changes: Option<Changes<'_>>,
-        lines: &[HudLine],
+        overlay: &Overlay,
     ) {
         let Some(img) = image else {
             return;
@@ -230,15 +245,14 @@ impl Surface {
             return;
         }
         self.shown.put(frame, img, changes, self.bgra);
-        if !lines.is_empty() {
-            let mut canvas = Canvas {
-                rgba: frame,
-                width: img.width as usize,
-                height: img.height as usize,
-                bgra: self.bgra,
-            };
-            self.shown.hud(canvas.panel(0, lines));
-        }
+        let mut canvas = Canvas {
+            rgba: frame,
+            width: img.width as usize,
+            height: img.height as usize,
+            bgra: self.bgra,
+            scale: scale_for(img.width as usize, img.height as usize),
+        };
+        self.shown.hud(canvas.overlay(overlay));
     }
 
     /// Whether there is something to draw on (not hidden, not resizing), after

@@ -1,4 +1,4 @@
-//! `bench rocking`: a dissipative cradle (`assets/realistic.ron`) over a long
+//! `bench rocking`: a dissipative cradle (`assets/presets/realistic.ron`) over a long
 //! run: each ball's amplitude against time, when the balls end up swinging in
 //! phase, where the energy went, and the restitution its contact law gives at
 //! 0.1, 0.5 and 1 m/s. `--plot` draws the amplitudes (docs/rocking.svg).

@@ -94,7 +94,7 @@ pub enum BenchCommand {
     Stress(BenchStressArgs),
     /// Picture error (RMSE, PSNR) against ms per frame, per anti-aliasing mode and depth.
     RenderQuality(BenchQualityArgs),
-    /// A dissipative cradle (e.g. --config assets/realistic.ron): amplitudes, the drift into swinging in phase, restitution.
+    /// A dissipative cradle (e.g. --config assets/presets/realistic.ron): amplitudes, the drift into swinging in phase, restitution.
     Rocking(BenchRockingArgs),
 }
 

@@ -49,7 +49,7 @@ impl Default for RenderConfig {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct CameraConfig {
-    /// Eye position (m). Default in front and above: (0, 0.36, 0.6).
+    /// Eye position (m). Default in front and above: (0, 0.41, 0.725).
     pub position: Vec3,
     /// Point looked at (m), not equal to `position`. Default (0, 0.12, 0).
     pub look_at: Vec3,
@@ -64,7 +64,7 @@ pub struct CameraConfig {
 impl Default for CameraConfig {
     fn default() -> Self {
         Self {
-            position: [0.0, 0.36, 0.6],
+            position: [0.0, 0.41, 0.725],
             look_at: [0.0, 0.12, 0.0],
             fov_deg: 31.0,
             fit: true,
@@ -174,9 +174,11 @@ impl Default for MaterialsConfig {
                 reflective: 0.2,
                 ..MaterialConfig::default()
             },
+            // No highlight: a broad one from lights near a long row's floor
+            // saturates to white over much of the picture.
             floor: MaterialConfig {
                 color: [0.32, 0.22, 0.14],
-                specular: Some(20.0),
+                specular: None,
                 reflective: 0.08,
                 checker: Some([0.26, 0.17, 0.1]),
                 checker_size: 0.05,

@@ -120,3 +120,9 @@ pub struct CradleState {
 /// spawn, its objects by the extract stage each frame.
 #[derive(Resource, Debug, Clone, Default)]
 pub struct FlatScene(pub trace::Scene);
+
+/// The box the balls and strings stay in at every time, at their true
+/// thickness (min, max corners): extract widens it by what it adds to far
+/// strings, and hands it to the tracer as the scene's motion bounds.
+#[derive(Resource, Debug, Clone, Copy, PartialEq)]
+pub struct SwingBox(pub glam::Vec3, pub glam::Vec3);

@@ -7,16 +7,13 @@
 //! that beats the head-on fit by half again.
 
 use super::spawn::Layout;
-use super::view::{camera, motion_bounds};
+use super::view::{camera, fit_region, motion_bounds};
 use crate::config::{CameraConfig, Config};
 use crate::trace::camera::CameraRays;
 use glam::DVec3;
 
 /// The oblique view wins only when its median ball is this much larger.
 const BETTER_BY: f64 = 1.5;
-
-/// The picture margin every ball keeps (a share of width and height).
-const MARGIN: f32 = 0.02;
 
 /// The view along the row for `config`, if it shows the balls clearly larger
 /// than `head_on` (the head-on fitted camera) does.
@@ -58,20 +55,17 @@ pub fn along_the_row(config: &Config, head_on: &CameraConfig) -> Option<CameraCo
 
 /// The median diameter (pixels) of the balls at rest as `cam` sees them, or
 /// `None` when a ball at rest, its pivot, or the swing at either end leaves the
-/// picture (less a margin).
+/// fit region ([`super::view::fit_region`]).
 #[must_use]
 pub fn median_ball_px(config: &Config, cam: &CameraConfig) -> Option<f64> {
     let c = &config.cradle;
     let (w, h) = (config.render.width, config.render.height);
     let rays = CameraRays::new(&camera(cam), w, h);
     let (lo, hi) = motion_bounds(config);
-    let (wf, hf) = (w as f32, h as f32);
+    let (at_least, at_most) = fit_region(w, h);
     let seen = |p: DVec3| {
         rays.project(p.as_vec3()).is_some_and(|(x, y)| {
-            x >= MARGIN * wf
-                && x <= (1.0 - MARGIN) * wf
-                && y >= MARGIN * hf
-                && y <= (1.0 - MARGIN) * hf
+            x >= at_least.x && x <= at_most.x && y >= at_least.y && y <= at_most.y
         })
     };
     let layout = Layout::new(config);

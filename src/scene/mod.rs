@@ -108,7 +108,8 @@ impl CradleWorld {
         let mut bound = config.clone();
         bound.start.lift = lifted;
         bound.start.angle_deg = angle.to_degrees();
-        self.world.resource_mut::<FlatScene>().0.motion_bounds = Some(view::motion_bounds(&bound));
+        let (lo, hi) = view::motion_bounds(&bound);
+        self.world.insert_resource(components::SwingBox(lo, hi));
         self.show_at(0.0);
     }
 

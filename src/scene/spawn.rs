@@ -4,7 +4,7 @@
 
 use super::components::{
     Ball, CradleState, FlatScene, Floor, Light, Material, Pendulum, Rod, Shape, SimClock, SimState,
-    Strand, StrandOf, Transform,
+    Strand, StrandOf, SwingBox, Transform,
 };
 use super::view::{self, f32x3};
 use crate::config::{Config, MaterialConfig};
@@ -110,6 +110,8 @@ fn insert_resources(world: &mut World, config: &Config) {
     });
     // Camera, lights and render settings are the tracer's types from here on.
     world.insert_resource(FlatScene(view::static_scene(config)));
+    let (lo, hi) = view::motion_bounds(config);
+    world.insert_resource(SwingBox(lo, hi));
 }
 
 fn spawn_entities(world: &mut World, config: &Config) {

@@ -2,7 +2,7 @@
 
 use super::components::{
     Ball, CradleState, FlatScene, Light, Material, Pendulum, Shape, SimClock, SimState, Strand,
-    StrandOf, Transform,
+    StrandOf, SwingBox, Transform,
 };
 use super::spawn::{attach_point, ball_transform};
 use crate::trace;
@@ -78,11 +78,48 @@ pub fn place_strands(
     }
 }
 
+/// The radius (m) a string needs to be `PIXELS_WIDE` wide at distance `d` (m)
+/// from the camera of `scene`.
+fn string_floor(scene: &trace::Scene, d: f64) -> f64 {
+    /// A string is drawn at least this wide: thinner, the pixel centres miss
+    /// it by turns as it swings, and it shimmers; anti-aliasing only finds
+    /// edges the centre samples see.
+    const PIXELS_WIDE: f64 = 1.0;
+    let fov = f64::from(scene.camera.fov_deg).to_radians();
+    let per_pixel = 2.0 * (0.5 * fov).tan() / f64::from(scene.size.1.max(1));
+    0.5 * PIXELS_WIDE * per_pixel * d
+}
+
 /// Extract: copies each object's shape (from its transform) and material, and
-/// the lights, into the flat scene; the rest of it was set at spawn.
-pub fn extract(objects: Drawables, lights: Query<&Light>, mut flat: ResMut<FlatScene>) {
+/// the lights, into the flat scene; the rest of it was set at spawn. Strings
+/// far from the camera are drawn [`string_floor`] thick, at least, and the
+/// swing box the tracer gets is widened to hold them.
+pub fn extract(
+    objects: Drawables,
+    lights: Query<&Light>,
+    swing: Res<SwingBox>,
+    mut flat: ResMut<FlatScene>,
+) {
     let scene = &mut flat.0;
     scene.objects.clear();
+    // Each string's floor is from its own far end; the swing box is widened
+    // by the floor at its corner furthest from the eye, which no string's
+    // exceeds, so the box stays the same while the view does.
+    let eye = scene.camera.position.as_dvec3();
+    let SwingBox(lo, hi) = *swing;
+    let far = (0..8)
+        .map(|i| {
+            let pick = |bit: usize, l: f32, h: f32| f64::from(if i & bit == 0 { l } else { h });
+            DVec3::new(
+                pick(1, lo.x, hi.x),
+                pick(2, lo.y, hi.y),
+                pick(4, lo.z, hi.z),
+            )
+        })
+        .map(|corner| (corner - eye).length())
+        .fold(0.0, f64::max);
+    let most = string_floor(scene, far);
+    let mut widened = 0.0_f64;
     for (t, shape, material, is_ball, is_strand) in &objects {
         let shape = match *shape {
             Shape::Sphere { radius } => trace::Shape::Sphere {
@@ -91,9 +128,19 @@ pub fn extract(objects: Drawables, lights: Query<&Light>, mut flat: ResMut<FlatS
             },
             Shape::Cylinder { radius, length } => {
                 let half = t.rotation * DVec3::new(0.0, 0.5 * length, 0.0);
+                let (a, b) = (t.translation - half, t.translation + half);
+                let radius = if is_strand {
+                    widened = widened.max(most - radius);
+                    radius.max(string_floor(
+                        scene,
+                        (a - eye).length().max((b - eye).length()),
+                    ))
+                } else {
+                    radius
+                };
                 trace::Shape::Cylinder {
-                    a: (t.translation - half).as_vec3(),
-                    b: (t.translation + half).as_vec3(),
+                    a: a.as_vec3(),
+                    b: b.as_vec3(),
                     radius: radius as f32,
                 }
             }
@@ -110,4 +157,7 @@ pub fn extract(objects: Drawables, lights: Query<&Light>, mut flat: ResMut<FlatS
     }
     scene.lights.clear();
     scene.lights.extend(lights.iter().map(|l| l.0));
+    // The strings drawn thicker stay inside the box widened as much.
+    let grow = glam::Vec3::splat(widened as f32 * 1.001);
+    scene.motion_bounds = Some((lo - grow, hi + grow));
 }

@@ -10,6 +10,15 @@ use crate::physics::params::swing_bound;
 use crate::trace::{self, camera::CameraRays};
 use glam::{DVec3, Vec2, Vec3};
 
+/// The share of the picture's height above the cradle that the fitted camera
+/// keeps clear of it: the window's status lines sit there.
+pub const FIT_TOP: f32 = 0.12;
+/// The share of the height from the top below which the fitted camera keeps
+/// the cradle clear: the window's key help and notices sit there.
+pub const FIT_BOTTOM: f32 = 0.88;
+/// The share of the width the fitted camera keeps clear at each side.
+pub const FIT_SIDE: f32 = 0.025;
+
 /// A config vector in the tracer's f32.
 pub(crate) fn f32x3(a: CVec3) -> Vec3 {
     Vec3::new(a[0] as f32, a[1] as f32, a[2] as f32)
@@ -48,41 +57,62 @@ pub fn camera(cam: &CameraConfig) -> trace::Camera {
 }
 
 /// The camera of `config`, with `camera.fit` moved back along its line of sight
-/// until every corner of the frame projects (by the tracer's projection) inside
-/// the middle 95% of the picture. A camera that sees the frame already, or looks
-/// straight down, is left as it is. A row too long to read that way is looked
-/// at along its length instead ([`super::long_row`]).
+/// until every corner of the frame, and of the box the swing stays in (lift
+/// angles over 90 degrees reach above the rails), projects (by the tracer's
+/// projection) inside the fit region: [`FIT_SIDE`] clear at each side, and
+/// clear of the bands above [`FIT_TOP`] and below [`FIT_BOTTOM`] where the
+/// window draws its status, help and notices. A camera that sees all that
+/// already, or looks straight down, is left as it is. A row too long to read
+/// that way is looked at along its length instead ([`super::long_row`]).
 ///
 /// A pure function of `config`, remembered for the last config on each thread:
 /// the window asks for it at every move of a drag that turns the view, and the
 /// search for a long row's view costs milliseconds.
 #[must_use]
 pub fn fitted_camera(config: &Config) -> CameraConfig {
+    fitted_camera_within(config, 1.0 - FIT_SIDE)
+}
+
+/// [`fitted_camera`] with the fit region's right edge at `right` (a share of
+/// the width) instead of [`FIT_SIDE`] from the edge: the window's control
+/// panel covers the rest. The camera moves sideways, keeping its direction,
+/// so that the cradle sits in the middle of the narrower region.
+#[must_use]
+pub fn fitted_camera_within(config: &Config, right: f32) -> CameraConfig {
+    type Fitted = Option<(Config, u32, CameraConfig)>;
     thread_local! {
-        static LAST: std::cell::RefCell<Option<(Config, CameraConfig)>> =
-            const { std::cell::RefCell::new(None) };
+        static LAST: std::cell::RefCell<Fitted> = const { std::cell::RefCell::new(None) };
     }
     if let Some(cam) = LAST.with_borrow(|last| {
         last.as_ref()
-            .filter(|(c, _)| c == config)
-            .map(|(_, cam)| cam.clone())
+            .filter(|(c, r, _)| c == config && *r == right.to_bits())
+            .map(|(_, _, cam)| cam.clone())
     }) {
         return cam;
     }
-    let cam = fit(config);
-    LAST.set(Some((config.clone(), cam.clone())));
+    let cam = fit(config, right);
+    LAST.set(Some((config.clone(), right.to_bits(), cam.clone())));
     cam
 }
 
-/// [`fitted_camera`], worked out.
-fn fit(config: &Config) -> CameraConfig {
+/// [`fitted_camera_within`], worked out.
+fn fit(config: &Config, right: f32) -> CameraConfig {
     let mut cam = config.camera.clone();
     let (w, h) = (config.render.width, config.render.height);
-    let corners = frame_corners(config);
-    let (lo, hi) = (
-        0.025 * Vec2::new(w as f32, h as f32),
-        0.975 * Vec2::new(w as f32, h as f32),
-    );
+    let (swing_lo, swing_hi) = motion_bounds(config);
+    let swing = (0..8).map(|i| {
+        let pick = |bit: usize, lo: f32, hi: f32| f64::from(if i & bit == 0 { lo } else { hi });
+        DVec3::new(
+            pick(1, swing_lo.x, swing_hi.x),
+            pick(2, swing_lo.y, swing_hi.y),
+            pick(4, swing_lo.z, swing_hi.z),
+        )
+    });
+    let corners: Vec<DVec3> = frame_corners(config).into_iter().chain(swing).collect();
+    let (lo, mut hi) = fit_region(w, h);
+    hi.x = hi.x.min(right * w as f32);
+    // How far (pixels) the region's middle lies right of the picture's.
+    let off_centre = f64::from(0.5 * (lo.x + hi.x) - 0.5 * w as f32);
     let inside = |cam: &CameraConfig| {
         let rays = CameraRays::new(&camera(cam), w, h);
         corners.iter().all(|&p| {
@@ -94,17 +124,53 @@ fn fit(config: &Config) -> CameraConfig {
     };
     let look = DVec3::from(cam.look_at);
     let back = DVec3::from(cam.position) - look;
-    if !cam.fit || inside(&cam) || back.normalize().cross(DVec3::Y).length() < 1e-6 {
+    let sideways = back.cross(DVec3::Y).normalize_or_zero();
+    if !cam.fit || sideways == DVec3::ZERO {
         return cam;
     }
-    // 2% further each step: at most ~350 steps to 1000 times the distance.
-    for i in 1..=350 {
-        cam.position = (look + back * 1.02_f64.powi(i)).to_array();
+    // 2% further each step (the first: as the asset has it): at most ~350
+    // steps to 1000 times the distance.
+    for i in 0..=350 {
+        let back = back * 1.02_f64.powi(i);
+        let shift = sideways * (off_centre * pixel_size(&cam, h, back.length()));
+        cam.position = (look + back + shift).to_array();
+        cam.look_at = (look + shift).to_array();
         if inside(&cam) {
+            if i == 0 {
+                // The asset's camera sees it all: no other view is looked for.
+                return cam;
+            }
             break;
         }
     }
-    super::long_row::along_the_row(config, &cam).unwrap_or(cam)
+    match super::long_row::along_the_row(config, &cam) {
+        Some(mut along) => {
+            let (eye, target) = (DVec3::from(along.position), DVec3::from(along.look_at));
+            let shift = (eye - target).cross(DVec3::Y).normalize_or_zero()
+                * (off_centre * pixel_size(&along, h, (eye - target).length()));
+            along.position = (eye + shift).to_array();
+            along.look_at = (target + shift).to_array();
+            along
+        }
+        None => cam,
+    }
+}
+
+/// The width (m) one pixel of a picture `h` pixels high covers at `distance`
+/// (m) from the eye of `cam`.
+fn pixel_size(cam: &CameraConfig, h: u32, distance: f64) -> f64 {
+    2.0 * distance * (0.5 * cam.fov_deg.to_radians()).tan() / f64::from(h.max(1))
+}
+
+/// The fit region of a `w x h` picture, its top-left and bottom-right corners
+/// in pixels.
+#[must_use]
+pub fn fit_region(w: u32, h: u32) -> (Vec2, Vec2) {
+    let (w, h) = (w as f32, h as f32);
+    (
+        Vec2::new(FIT_SIDE * w, FIT_TOP * h),
+        Vec2::new((1.0 - FIT_SIDE) * w, FIT_BOTTOM * h),
+    )
 }
 
 /// A config light as the tracer's, its colour times its intensity.

@@ -2,9 +2,11 @@
 # Drives the real window (needs DISPLAY, xdotool, ImageMagick, python3): it
 # draws a non-blank picture, a left-drag lifts a ball and release swings it,
 # quick arrows keep it running, Space pauses, the wheel and drags change the
-# view, Tab shows the control panel, 45 rapid resizes do not hang it, a saved
-# config reloads and a bad one keeps the scene, S saves unique screenshots,
-# Escape exits 0, and a window destroyed from outside exits 0.
+# view, Tab shows the control panel and the keys still work with it open, S
+# while paused shows a notice, a preset loads and Ctrl+Z undoes it, 45 rapid
+# resizes do not hang it, a saved config reloads and a bad one keeps the
+# scene, S saves unique screenshots, Escape exits 0, and a window destroyed
+# from outside exits 0.
 set -uo pipefail
 bin="$1"
 work="$(mktemp -d)"
@@ -51,9 +53,9 @@ colors=$(identify -format %k "$work/start.png")
 [ "$colors" -gt 200 ] && ok "draws a picture ($colors colours)" || bad "draws a picture ($colors colours)"
 
 # Left-drag the right-end ball (at this size and the asset's view it sits at
-# 292,135) out and up: it follows while held, and swings once let go.
-xdotool mousemove --window "$wid" 292 135; sleep 0.3; xdotool mousedown 1; sleep 0.3
-for x in 300 310 320 330 340 350 360; do xdotool mousemove --window "$wid" $x $((135 - (x - 292) / 2)); sleep 0.1; done
+# 284,132) out and up: it follows while held, and swings once let go.
+xdotool mousemove --window "$wid" 284 132; sleep 0.3; xdotool mousedown 1; sleep 0.3
+for x in 300 310 320 330 340 350 360; do xdotool mousemove --window "$wid" $x $((132 - (x - 284) / 2)); sleep 0.1; done
 sleep 1; shot held1; sleep 0.5; shot held2
 d1=$(differ start held1); d2=$(differ held1 held2)
 grep -q "picked ball 5" "$work/app.log" && [ "$d1" != "0" ] && [ "$d2" = "0" ] \
@@ -88,6 +90,35 @@ shot nopanel; xdotool key Tab; sleep 1.5; shot panel; xdotool key Tab; sleep 1.5
 d1=$(differ nopanel panel); d2=$(differ nopanel nopanel2)
 [ "$d1" != "0" ] && [ "$d2" = "0" ] && ok "Tab shows the control panel and hides it ($d1 pixels)" \
   || bad "Tab shows the control panel and hides it ($d1, $d2)"
+
+# With the panel open the keys are still the app's: Space runs and stops the
+# swing, H shows the help, arrows change the cradle and nothing is typed into
+# the panel's fields (a blanked field would be refused: "not applied").
+xdotool key Tab; sleep 1.5
+xdotool key space; sleep 1; shot open1; sleep 0.7; shot open2
+d=$(differ open1 open2)
+[ "$d" != "0" ] && ok "Space runs the swing with the panel open ($d pixels changed)" \
+  || bad "Space runs the swing with the panel open"
+xdotool key space; sleep 1; shot open3; xdotool key h; sleep 1; shot open4; xdotool key h h; sleep 0.5
+d=$(differ open3 open4)
+[ "$d" != "0" ] && ok "H shows the help with the panel open ($d pixels changed)" \
+  || bad "H shows the help with the panel open"
+xdotool key Tab Tab Right Left; sleep 1
+grep -q "not applied" "$work/app.log" && bad "keys are not typed into the panel" || ok "keys are not typed into the panel"
+# S while paused: a notice with the file's name, gone a few seconds later.
+shot quiet0; xdotool key s; sleep 0.8; shot quiet1; sleep 3.5; shot quiet2
+d1=$(differ quiet0 quiet1); d2=$(differ quiet0 quiet2)
+grep -q "notice: saved screenshot newtons-cradle-" "$work/app.log" && [ "$d1" != "0" ] && [ "$d2" = "0" ] \
+  && ok "S while paused shows a notice, then it goes ($d1 pixels)" || bad "S while paused shows a notice, then it goes ($d1, $d2)"
+# A preset from the panel's list (at this size the list opens at 240,57 and
+# "realistic" is its second entry), then Ctrl+Z back.
+xdotool mousemove --window "$wid" 240 57 click 1; sleep 1
+xdotool mousemove --window "$wid" 220 96 click 1; sleep 1.5
+grep -q "notice: preset loaded: realistic" "$work/app.log" && ok "a preset loads from the panel" \
+  || bad "a preset loads from the panel"
+xdotool mousemove --window "$wid" 100 200; xdotool key ctrl+z; sleep 1
+grep -q "notice: undone" "$work/app.log" && ok "Ctrl+Z undoes the preset" || bad "Ctrl+Z undoes the preset"
+xdotool key Tab; sleep 1
 
 xdotool key space
 for i in $(seq 1 45); do xdotool windowsize "$wid" $((300 + (i * 37) % 700)) $((200 + (i * 53) % 500)); done

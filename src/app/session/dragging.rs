@@ -30,9 +30,44 @@ impl Session {
         tracing::debug!("ball {ball} dragged to picture pixel {at:?}");
         if let Some((theta, lifted, angle)) = drag::dragged(&self.config, &camera, ball, at) {
             self.world.start_from(&self.config, &theta, lifted, angle);
+            self.show_dragged(ball, lifted, theta[ball]);
             self.retrace = true;
         }
         true
+    }
+
+    /// What the HUD and panel say after a drag that left `lifted` balls at
+    /// angle `theta` (rad, signed), `ball` among them. Pulled left, the state
+    /// is the config's own start (the leftmost balls lifted), and becomes it;
+    /// pulled right, it is told as it is.
+    fn show_dragged(&mut self, ball: usize, lifted: usize, theta: f64) {
+        let deg = theta.abs().to_degrees();
+        if theta <= 0.0 {
+            self.config.start.lift = if theta == 0.0 { 0 } else { lifted };
+            self.config.start.angle_deg = deg;
+            self.custom = None;
+        } else {
+            let last = self.config.cradle.balls;
+            let balls = if ball + 1 == last {
+                format!("ball {last}")
+            } else {
+                format!("balls {}-{last}", ball + 1)
+            };
+            self.custom = Some(format!("{balls} at {deg:.1} deg right"));
+        }
+    }
+
+    /// The ball held, if one is (numbered from 0 at the left).
+    #[must_use]
+    pub fn holding(&self) -> Option<usize> {
+        self.dragging
+    }
+
+    /// What a drag to the right lifted ("balls 4-5 at 31.0 deg right"), which
+    /// the config's start cannot say; `None` otherwise.
+    #[must_use]
+    pub fn custom_start(&self) -> Option<&str> {
+        self.custom.as_deref()
     }
 
     /// The left button up: a held ball is let go, and the swing runs from there.

@@ -3,6 +3,7 @@
 
 use super::{RATES, Session};
 use crate::app::controls::{Apply, Controls};
+use crate::app::notice;
 
 impl Session {
     /// Whether the control panel is shown.
@@ -20,8 +21,13 @@ impl Session {
     /// Applies the control panel's settings ([`Controls::apply_to`]); a refused
     /// edit is shown in the HUD and changes nothing.
     pub fn apply_controls(&mut self, controls: &Controls) {
-        self.rate = 2f64.powi(controls.rate_exp.clamp(*RATES.start(), *RATES.end()));
-        match controls.apply_to(&self.config) {
+        let rate = 2f64.powi(controls.rate_exp.clamp(*RATES.start(), *RATES.end()));
+        let applied = controls.apply_to(&self.config);
+        if rate != self.rate || matches!(applied, Ok(Apply::Live(_) | Apply::Restart(_))) {
+            self.remember();
+        }
+        self.rate = rate;
+        match applied {
             Ok(Apply::Same) => {}
             Ok(Apply::Live(c)) => {
                 self.config = c;
@@ -34,7 +40,11 @@ impl Session {
                 self.error = None;
                 self.respawn();
             }
-            Err(e) => self.error = Some(e),
+            Err(e) => {
+                let first = e.lines().next().unwrap_or_default().to_owned();
+                self.notify(format!("not applied: {first}"), notice::BAD);
+                self.error = Some(e);
+            }
         }
     }
 

@@ -1,7 +1,7 @@
 //! The HUD's text: run state, rates, time, counts, help, and any config error.
 
 use super::{HudLine, HudMode, Session};
-use crate::app::keys;
+use std::time::Instant;
 
 /// A rate as the HUD shows it: `1x`, `4x`, `1/16x`.
 fn rate_text(rate: f64) -> String {
@@ -12,8 +12,50 @@ fn rate_text(rate: f64) -> String {
     }
 }
 
+/// What the window draws over the picture: the status lines (top left), the
+/// key help (at the bottom, in columns), and the notices (bottom left).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Overlay {
+    /// Status lines and any config error; empty when the HUD is off and all
+    /// is well.
+    pub status: Vec<HudLine>,
+    /// Whether the key help shows.
+    pub help: bool,
+    /// The notices showing now, oldest first.
+    pub notices: Vec<HudLine>,
+}
+
 impl Session {
-    /// The HUD's lines for its mode (none when off), plus any config error.
+    /// What to draw over the picture at `now` (notices past their time go).
+    pub fn overlay(&mut self, now: Instant) -> Overlay {
+        Overlay {
+            status: self.hud_lines(),
+            help: self.hud == HudMode::Help,
+            notices: self.notices.at(now),
+        }
+    }
+
+    /// Whether the HUD's status shows (screenshots then keep what the window
+    /// shows; without it they are the bare picture).
+    #[must_use]
+    pub fn hud_on(&self) -> bool {
+        self.hud != HudMode::Off
+    }
+
+    /// The lifted balls as the HUD and panel say it: the count and angle, or
+    /// the balls and angle a drag to the right made.
+    #[must_use]
+    pub fn lifted_text(&self) -> String {
+        match &self.custom {
+            Some(custom) => format!("custom ({custom})"),
+            None => format!(
+                "{} at {:.1} deg",
+                self.config.start.lift, self.config.start.angle_deg
+            ),
+        }
+    }
+
+    /// The HUD's status lines for its mode (none when off), plus any config error.
     #[must_use]
     pub fn hud_lines(&self) -> Vec<HudLine> {
         let mut lines = Vec::new();
@@ -21,27 +63,26 @@ impl Session {
             let white = [235, 235, 235];
             let cradle = self.world.cradle();
             let err = cradle.cradle.energy_rel_error(&cradle.snapshot);
-            let (state, color) = if self.running() {
-                ("RUNNING", [140, 230, 140])
+            let clock = format!("t {:7.2} s  rate {}", self.time(), rate_text(self.rate));
+            let first = if let Some(ball) = self.dragging {
+                (
+                    format!("HOLDING ball {}: let go to swing  {clock}", ball + 1),
+                    [120, 200, 255],
+                )
+            } else if self.running() {
+                (
+                    format!(
+                        "RUNNING  fps {:5.1}  trace {:5.1} ms  {clock}",
+                        self.fps, self.trace_ms
+                    ),
+                    [140, 230, 140],
+                )
             } else {
-                ("PAUSED - press SPACE", [250, 210, 110])
+                // While paused nothing is traced: no rates to show.
+                (format!("PAUSED: press SPACE  {clock}"), [250, 210, 110])
             };
+            lines.push(first);
             let c = &self.config;
-            lines.push((format!("Newton's cradle   {state}"), color));
-            // While paused nothing is traced: say so rather than show old rates.
-            let timing = if self.running() {
-                format!("fps {:5.1}   trace {:6.1} ms", self.fps, self.trace_ms)
-            } else {
-                "fps     -   trace      - ms".to_owned()
-            };
-            lines.push((
-                format!(
-                    "{timing}   t {:8.2} s   rate {}",
-                    self.time(),
-                    rate_text(self.rate)
-                ),
-                white,
-            ));
             // A cradle that loses energy shows how much is left; an ideal one,
             // how well it keeps it.
             let energy = if cradle.cradle.params().dissipative() {
@@ -52,18 +93,15 @@ impl Session {
             };
             lines.push((
                 format!(
-                    "balls {}  lifted {}  contact {}  {energy}",
+                    "balls {}  lifted {}  {}  {energy}",
                     c.cradle.balls,
-                    c.start.lift,
+                    self.lifted_text(),
                     c.contact.model.name()
                 ),
                 white,
             ));
-            let grey = [180, 190, 200];
-            if self.hud == HudMode::Help {
-                lines.extend(keys::HELP.iter().map(|l| ((*l).to_string(), grey)));
-            } else {
-                lines.push(("H: help".to_string(), grey));
+            if self.hud == HudMode::Status {
+                lines.push(("H: help   TAB: panel".to_string(), [180, 190, 200]));
             }
         }
         if let Some(e) = &self.error {

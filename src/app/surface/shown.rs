@@ -6,16 +6,17 @@
 //! Window-free, so it is tested here.
 
 use super::formats::put_bgra;
+use crate::app::hud::Rect;
 use crate::trace::{Changes, Image};
 
-/// The framebuffer's picture: which one, and the HUD box drawn over it.
+/// The framebuffer's picture: which one, and the HUD boxes drawn over it.
 #[derive(Debug, Default)]
 pub(super) struct Shown {
     /// The number of the picture the framebuffer holds (`None`: unknown, say
     /// after a resize).
     id: Option<u64>,
-    /// The HUD box drawn over it last, width and height in pixels.
-    hud: (usize, usize),
+    /// The HUD boxes drawn over it last.
+    hud: Vec<Rect>,
 }
 
 impl Shown {
@@ -56,18 +57,20 @@ impl Shown {
             }
             _ => put(frame, &img.rgba),
         }
-        let (hw, hh) = (self.hud.0.min(w), self.hud.1.min(h));
-        for y in 0..hh {
-            let span = y * stride..y * stride + hw * 4;
-            put(&mut frame[span.clone()], &img.rgba[span]);
+        for &(x, y0, bw, bh) in &self.hud {
+            let (x0, x1) = (x.min(w), (x + bw).min(w));
+            for y in y0.min(h)..(y0 + bh).min(h) {
+                let span = y * stride + x0 * 4..y * stride + x1 * 4;
+                put(&mut frame[span.clone()], &img.rgba[span]);
+            }
         }
         self.id = id;
-        self.hud = (0, 0);
+        self.hud.clear();
     }
 
-    /// The HUD box just drawn over the picture, width and height.
-    pub(super) fn hud(&mut self, size: (usize, usize)) {
-        self.hud = size;
+    /// The HUD boxes just drawn over the picture.
+    pub(super) fn hud(&mut self, boxes: Vec<Rect>) {
+        self.hud = boxes;
     }
 }
 
@@ -143,9 +146,17 @@ mod tests {
         for y in 0..2 {
             frame[y * 16..y * 16 + 8].fill(9);
         }
-        shown.hud((2, 2));
+        shown.hud(vec![(0, 0, 2, 2), (3, 2, 5, 5)]);
         shown.put(&mut frame, &img, Some(c), true);
         assert_eq!(&frame[16..20], &[204, 104, 4, 255], "pixel 4 put back");
+        frame[44..48].fill(9);
+        shown.hud(vec![(3, 2, 5, 5)]);
+        shown.put(&mut frame, &img, Some(c), true);
+        assert_eq!(
+            &frame[44..48],
+            &[211, 111, 11, 255],
+            "a box clipped at the edge"
+        );
         // After `forget`, copied whole.
         frame.fill(0);
         shown.forget();
