@@ -163,3 +163,31 @@ fn bench_render_quality_rows_per_mode_and_depth() {
             .all(|r| r["psnr_vs_16"].is_null())
     );
 }
+
+#[test]
+fn bench_stress_table_closes_with_the_count_passed_and_keeps_short_times() {
+    let o = run(&["bench", "stress", "--scale", "0.01"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let out = String::from_utf8_lossy(&o.stdout);
+    let rows: Vec<&str> = out.lines().collect();
+    let last = rows.last().expect("a table");
+    // Every row between the header and the closing line is a scenario.
+    let scenarios = rows.len() - 3;
+    assert_eq!(
+        *last,
+        format!("stress suite: {scenarios} of {scenarios} scenarios passed")
+    );
+    // The "sim s" column of a scenario run for 0.1 s or less keeps its
+    // decimals instead of rounding to 0.
+    let sims: Vec<f64> = rows[2..rows.len() - 1]
+        .iter()
+        .map(|r| {
+            let fields: Vec<&str> = r.split_whitespace().collect();
+            // The name may hold spaces; the six numbers end the row.
+            fields[fields.len() - 6]
+                .parse()
+                .expect("a number of seconds")
+        })
+        .collect();
+    assert!(sims.iter().all(|&s| s > 0.0), "{sims:?}");
+}

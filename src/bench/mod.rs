@@ -15,12 +15,13 @@ pub mod stress;
 
 pub use render::{Row, bench_render};
 
-/// A progress bar on stderr with the time left, for `total` steps of `unit`;
-/// hidden when stderr is not a terminal, so pipes and logs stay clean.
+/// A progress bar on stderr with the time left, for `total` steps of `unit`,
+/// and its message (what runs now); hidden when stderr is not a terminal, so
+/// pipes and logs stay clean.
 #[must_use]
 pub fn progress_bar(total: u64, unit: &str) -> indicatif::ProgressBar {
     let style = indicatif::ProgressStyle::with_template(&format!(
-        "[{{bar:30}}] {{pos}}/{{len}} {unit}, {{eta}} left"
+        "[{{bar:30}}] {{pos}}/{{len}} {unit}, {{eta}} left {{msg}}"
     ))
     .expect("a fixed, valid template")
     .progress_chars("#>-");

@@ -202,6 +202,15 @@ pub fn run(s: &Scenario) -> Report {
     report
 }
 
+/// Simulated seconds for the table: short runs keep their decimals.
+fn seconds(t: f64) -> String {
+    if t < 10.0 {
+        format!("{t:.2}")
+    } else {
+        format!("{t:.0}")
+    }
+}
+
 /// `bench stress`: every scenario of the suite, `scale` times longer, a row on
 /// `out` as each finishes.
 ///
@@ -222,30 +231,40 @@ pub fn report(scale: f64, json: bool, out: &mut impl Write) -> anyhow::Result<()
     let mut failed = Vec::new();
     let all = scenarios(scale);
     let count = all.len();
+    let bar = super::progress_bar(count as u64, "scenarios");
+    let mut passed = 0;
     for (i, s) in all.into_iter().enumerate() {
-        // Some scenarios take a minute at large scales: say which one runs.
-        tracing::info!("stress {}/{count}: {}", i + 1, s.name);
-        let r = run(&s);
-        if json {
-            writeln!(out, "{}", serde_json::to_string(&r)?)?;
+        // Some scenarios take a minute at large scales: say which one runs, on
+        // the bar on a terminal (a log line there would break the table).
+        if bar.is_hidden() {
+            tracing::info!("stress {}/{count}: {}", i + 1, s.name);
         } else {
-            writeln!(
-                out,
-                "{:<36} {:>8.0} {:>9} {:>10.2e} {:>10.2e} {:>9.6} {:>7.2}",
+            bar.set_message(s.name.clone());
+        }
+        let r = run(&s);
+        let line = if json {
+            serde_json::to_string(&r)?
+        } else {
+            format!(
+                "{:<36} {:>8} {:>9} {:>10.2e} {:>10.2e} {:>9.6} {:>7.2}",
                 r.name,
-                r.duration,
+                seconds(r.duration),
                 r.impacts,
                 r.energy_drift,
                 r.max_overlap.max(0.0),
                 r.max_angle / r.angle_bound,
                 r.cpu_seconds
-            )?;
-        }
-        failed.extend(
-            r.failures(&s)
-                .into_iter()
-                .map(|f| format!("{}: {f}", s.name)),
-        );
+            )
+        };
+        bar.suspend(|| writeln!(out, "{line}"))?;
+        bar.inc(1);
+        let failures = r.failures(&s);
+        passed += usize::from(failures.is_empty());
+        failed.extend(failures.into_iter().map(|f| format!("{}: {f}", s.name)));
+    }
+    bar.finish_and_clear();
+    if !json {
+        writeln!(out, "stress suite: {passed} of {count} scenarios passed")?;
     }
     anyhow::ensure!(
         failed.is_empty(),
