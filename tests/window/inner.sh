@@ -118,6 +118,11 @@ grep -q "notice: preset loaded: realistic" "$work/app.log" && ok "a preset loads
   || bad "a preset loads from the panel"
 xdotool mousemove --window "$wid" 100 200; xdotool key ctrl+z; sleep 1
 grep -q "notice: undone" "$work/app.log" && ok "Ctrl+Z undoes the preset" || bad "Ctrl+Z undoes the preset"
+# A click on the balls field starts typing there; Escape then leaves the field,
+# not the app.
+xdotool mousemove --window "$wid" 316 79 click 1; sleep 0.7; xdotool key Escape; sleep 1
+kill -0 "$pid" 2>/dev/null && ok "Escape in a panel field leaves the field, not the app" \
+  || bad "Escape in a panel field leaves the field, not the app"
 xdotool key Tab; sleep 1
 
 xdotool key space
