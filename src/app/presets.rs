@@ -15,36 +15,25 @@ pub struct Preset {
     text: &'static str,
 }
 
+/// The preset of `assets/presets/NAME.ron`, its text built in.
+macro_rules! preset {
+    ($name:literal) => {
+        Preset {
+            name: $name,
+            text: include_str!(concat!("../../assets/presets/", $name, ".ron")),
+        }
+    };
+}
+
 /// The presets, in the panel's order.
 pub const PRESETS: [Preset; 7] = [
-    Preset {
-        name: "default",
-        text: include_str!("../../assets/presets/default.ron"),
-    },
-    Preset {
-        name: "realistic",
-        text: include_str!("../../assets/presets/realistic.ron"),
-    },
-    Preset {
-        name: "two-lifted",
-        text: include_str!("../../assets/presets/two-lifted.ron"),
-    },
-    Preset {
-        name: "three-lifted",
-        text: include_str!("../../assets/presets/three-lifted.ron"),
-    },
-    Preset {
-        name: "small-gaps",
-        text: include_str!("../../assets/presets/small-gaps.ron"),
-    },
-    Preset {
-        name: "hertz",
-        text: include_str!("../../assets/presets/hertz.ron"),
-    },
-    Preset {
-        name: "long-row",
-        text: include_str!("../../assets/presets/long-row.ron"),
-    },
+    preset!("default"),
+    preset!("realistic"),
+    preset!("two-lifted"),
+    preset!("three-lifted"),
+    preset!("small-gaps"),
+    preset!("hertz"),
+    preset!("long-row"),
 ];
 
 impl Preset {
