@@ -206,3 +206,46 @@ fn the_mutations_reach_the_assets_numbers_and_some_are_accepted() {
     assert!(accepted > 5, "{accepted} of {} accepted", nums.len());
     assert!(parse(&mutate(&[Edit::Number(0, "NaN".to_owned())]), "t.ron").is_err());
 }
+
+#[test]
+fn hertz_contact_at_the_extremes_always_finishes() {
+    // Every corner of the accepted ranges that make contacts short, stiff,
+    // light, heavy, fast or slow: radius, Young's modulus, dissipation (none,
+    // or the most this cradle takes), density, gravity and lift angle. Each
+    // case simulates one second on its own thread; a case not done in a minute
+    // has hung (the slowest takes about a second on the 2-core build machine).
+    let mut cases = 0;
+    for radius in [1e-4, 0.02] {
+        for youngs in [1e5, 1e13] {
+            for damped in [false, true] {
+                for density in [1.0, 1e5] {
+                    for gravity in [1e-3, 1e4] {
+                        for angle in [1.0, 90.0, 179.999] {
+                            let mut c = Config::default();
+                            c.cradle.radius = radius;
+                            c.cradle.string_radius = 0.03 * radius;
+                            c.cradle.rail_spread = 2.5 * radius;
+                            c.cradle.density = density;
+                            c.cradle.gravity = gravity;
+                            c.contact.model = newtons_cradle::config::ContactModel::Hertz;
+                            c.contact.youngs_modulus = youngs;
+                            c.start.angle_deg = angle;
+                            if damped {
+                                c.contact.dissipation = c.dissipation_limit().0.min(1e-3);
+                            }
+                            assert!(c.validate().is_ok(), "{c:?}");
+                            assert!(
+                                simulates_within(&c, Duration::from_mins(1)),
+                                "did not simulate one second: r {radius}, E {youngs}, A {}, \
+                                 density {density}, g {gravity}, angle {angle}",
+                                c.contact.dissipation
+                            );
+                            cases += 1;
+                        }
+                    }
+                }
+            }
+        }
+    }
+    assert_eq!(cases, 96);
+}

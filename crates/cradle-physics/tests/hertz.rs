@@ -197,3 +197,60 @@ fn fixed_step_integrators_run_hertz_contacts_too() {
     }
     assert!(rk4.energy_rel_error(&b).abs() < 1e-9);
 }
+
+#[test]
+fn a_phase_advances_even_where_no_step_meets_the_error_bound() {
+    // Balls of 0.1 mm, stiff (E = 1e13 Pa) and damped far beyond the model's
+    // range (A = 1e-3 s, ten million contact times; the config refuses it):
+    // the error bound is not met by any step f64 can take, and the phase once
+    // ended where it began, not apart, to be started again from there for
+    // ever. Now it takes its shortest steps regardless, and advances.
+    let r = 1e-4;
+    let p = CradleParams {
+        balls: 5,
+        radius: r,
+        mass: 7850.0 * 4.0 / 3.0 * std::f64::consts::PI * r.powi(3),
+        length: 0.16,
+        gap: 0.0,
+        gravity: 9.81,
+        restitution: 1.0,
+        hertz: Some(stiffness(1e13, 0.29, r)),
+        dissipation: 1e-3,
+        drag: 0.0,
+    };
+    let k = p.hertz.expect("hertz");
+    let t0 = 0.215_287_483_507_384_3;
+    let mut omega = vec![0.0; 5];
+    omega[0] = p.w0();
+    let end = run_phase(&p, k, t0, &[0.0; 5], &omega, f64::INFINITY);
+    assert!(end.t > t0, "the phase advanced: {} after {t0}", end.t);
+    assert!(end.theta.iter().chain(&end.omega).all(|x| x.is_finite()));
+}
+
+#[test]
+fn a_contact_of_tiny_balls_late_in_a_run_advances_and_comes_apart() {
+    // A contact of tiny stiff balls (0.1 mm, E = 1e13 Pa) late in a run, where
+    // f64 resolves time only to 1.8e-15 s and the contact lasts ~1e-9 s.
+    let r = 1e-4;
+    let p = CradleParams {
+        balls: 2,
+        radius: r,
+        mass: 7850.0 * 4.0 / 3.0 * std::f64::consts::PI * r.powi(3),
+        length: 0.16,
+        gap: 0.0,
+        gravity: 9.81,
+        restitution: 1.0,
+        hertz: Some(stiffness(1e13, 0.29, r)),
+        dissipation: 0.0,
+        drag: 0.0,
+    };
+    let k = p.hertz.expect("hertz");
+    // Touching at 0.5 rad, ball 0 closing at 1 rad/s.
+    let end = run_phase(&p, k, 13.028, &[0.5, 0.5], &[1.0, 0.0], f64::INFINITY);
+    assert!(end.separated, "the pair comes apart");
+    assert!(end.t > 13.028, "the phase advanced: {}", end.t);
+    // Equal elastic balls swap their speeds; over the contact gravity changes
+    // them by far less than 1e-6 rad/s: 1e-5 is a safe bound.
+    assert!(end.omega[0].abs() < 1e-5, "{:?}", end.omega);
+    assert!((end.omega[1] - 1.0).abs() < 1e-5, "{:?}", end.omega);
+}
