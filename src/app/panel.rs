@@ -6,7 +6,7 @@
 use super::controls::Controls;
 use super::presets::PRESETS;
 use super::session::Session;
-use crate::config::{ContactModel, MAX_ANGLE_DEG, MAX_BALLS};
+use crate::config::{ContactModel, ranges};
 use crate::physics::Integrator;
 use egui::{ClippedPrimitive, Context, TexturesDelta, ViewportId};
 use egui_wgpu::{Renderer, RendererOptions, ScreenDescriptor};
@@ -198,21 +198,42 @@ fn panel_ui(
         .show(ctx, |ui| {
             request = presets_row(ui);
             ui.separator();
+            // Every slider spans its key's whole range (`config::ranges`), and
+            // a typed value is passed on as typed: validation refuses what is
+            // out of range, and says so, rather than the slider clamping it.
+            let never = egui::SliderClamping::Never;
             ui.add(
-                egui::Slider::new(&mut c.balls, 1..=MAX_BALLS)
+                egui::Slider::new(&mut c.balls, ranges::BALLS)
                     .logarithmic(true)
+                    .clamping(never)
                     .text("balls"),
             );
             let most = c.balls;
-            ui.add(egui::Slider::new(&mut c.lift, 0..=most).text("lifted"));
+            ui.add(
+                egui::Slider::new(&mut c.lift, 0..=most)
+                    .clamping(never)
+                    .text("lifted"),
+            );
             if let Some(custom) = custom {
                 ui.label(format!("now lifted by a drag: {custom}"));
             }
             ui.add(
-                egui::Slider::new(&mut c.angle_deg, 0.0..=MAX_ANGLE_DEG).text("lift angle (deg)"),
+                egui::Slider::new(&mut c.angle_deg, ranges::ANGLE_DEG)
+                    .clamping(never)
+                    .text("lift angle (deg)"),
             );
-            ui.add(egui::Slider::new(&mut c.gap, 0.0..=0.01).text("gap (m)"));
-            ui.add(egui::Slider::new(&mut c.restitution, 0.0..=1.0).text("restitution"));
+            ui.add(
+                egui::Slider::new(&mut c.gap, ranges::GAP)
+                    .logarithmic(true)
+                    .smallest_positive(1e-5)
+                    .clamping(never)
+                    .text("gap (m)"),
+            );
+            ui.add(
+                egui::Slider::new(&mut c.restitution, ranges::RESTITUTION)
+                    .clamping(never)
+                    .text("restitution"),
+            );
             egui::ComboBox::from_label("contact")
                 .selected_text(c.contact.name())
                 .show_ui(ui, |ui| {
@@ -220,14 +241,21 @@ fn panel_ui(
                     ui.selectable_value(&mut c.contact, ContactModel::Hertz, "hertz");
                 });
             ui.add(
-                egui::Slider::new(&mut c.dissipation, 0.0..=1e-5)
+                egui::Slider::new(&mut c.dissipation, ranges::DISSIPATION)
                     .logarithmic(true)
-                    .smallest_positive(1e-8)
+                    .smallest_positive(1e-9)
+                    .clamping(never)
                     .custom_formatter(|v, _| format!("{v:.2e}"))
                     .custom_parser(|s| s.trim().parse().ok())
                     .text("hertz dissipation (s)"),
             );
-            ui.add(egui::Slider::new(&mut c.air_density, 0.0..=2.0).text("air density (kg/m^3)"));
+            ui.add(
+                egui::Slider::new(&mut c.air_density, ranges::AIR_DENSITY)
+                    .logarithmic(true)
+                    .smallest_positive(0.01)
+                    .clamping(never)
+                    .text("air density (kg/m^3)"),
+            );
             egui::ComboBox::from_label("integrator")
                 .selected_text(c.integrator.name())
                 .show_ui(ui, |ui| {
@@ -235,7 +263,11 @@ fn panel_ui(
                         ui.selectable_value(&mut c.integrator, i, i.name());
                     }
                 });
-            ui.add(egui::Slider::new(&mut c.samples, 1..=64).text("samples per pixel"));
+            ui.add(
+                egui::Slider::new(&mut c.samples, ranges::SAMPLES)
+                    .clamping(never)
+                    .text("samples per pixel"),
+            );
             ui.checkbox(&mut c.adaptive, "adaptive anti-aliasing");
             ui.add(
                 egui::Slider::new(&mut c.rate_exp, -4..=2)
@@ -305,4 +337,48 @@ fn energy_bars(ui: &mut egui::Ui, shares: &[f64], (left, error): (f64, f64)) {
                 ui.add(bar);
             }
         });
+}
+
+#[cfg(test)]
+mod tests {
+    use super::panel_ui;
+    use crate::app::controls::Controls;
+    use crate::config::{Config, ContactModel, ranges};
+
+    /// The panel's settings after `frames` frames of egui with no input.
+    fn shown(controls: &Controls, frames: usize) -> Controls {
+        let ctx = egui::Context::default();
+        let mut c = controls.clone();
+        for _ in 0..frames {
+            let _ = ctx.run_ui(egui::RawInput::default(), |ui| {
+                panel_ui(ui.ctx(), &mut c, None, &[0.5, 0.5], (1.0, 0.0));
+            });
+        }
+        c
+    }
+
+    #[test]
+    fn opening_the_panel_moves_no_value_the_config_accepts() {
+        // Each key at the top of its range, and a cradle of a 5 cm gap with
+        // air at 50 kg/m^3, as the command line may set them: the panel shows
+        // them as they are (its sliders once clamped them to 1 cm, 2 kg/m^3).
+        let mut config = Config::default();
+        config.cradle.balls = *ranges::BALLS.end();
+        config.start.lift = 3;
+        config.start.angle_deg = *ranges::ANGLE_DEG.end();
+        config.cradle.gap = *ranges::GAP.end();
+        config.contact.model = ContactModel::Hertz;
+        config.cradle.air_density = *ranges::AIR_DENSITY.end();
+        config.contact.dissipation = config.dissipation_limit().0;
+        config.render.samples = *ranges::SAMPLES.end();
+        let mut wide = Config::default();
+        wide.cradle.gap = 0.05;
+        wide.contact.model = ContactModel::Hertz;
+        wide.cradle.air_density = 50.0;
+        for c in [config, wide, Config::default()] {
+            assert!(c.validate().is_ok());
+            let controls = Controls::of(&c, 0);
+            assert_eq!(shown(&controls, 3), controls);
+        }
+    }
 }

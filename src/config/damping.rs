@@ -4,7 +4,7 @@
 //! exact integrator).
 
 use super::validate::Checker;
-use super::{Config, ContactModel};
+use super::{Config, ContactModel, ranges};
 use crate::physics::Integrator;
 
 impl Config {
@@ -41,7 +41,7 @@ impl Config {
         c.num(
             "cradle.air_density",
             k.air_density,
-            (0.0..=100.0).contains(&k.air_density),
+            ranges::AIR_DENSITY.contains(&k.air_density),
             "0..=100 (kg/m^3; air at 20 C is 1.2, 0 = no drag)",
         );
         c.num(
@@ -53,7 +53,7 @@ impl Config {
         c.num(
             "contact.dissipation",
             ct.dissipation,
-            (0.0..=1e-3).contains(&ct.dissipation),
+            ranges::DISSIPATION.contains(&ct.dissipation),
             "0..=1e-3 (s; 0 = elastic)",
         );
         let hertz = ct.model == ContactModel::Hertz;

@@ -8,6 +8,7 @@ mod damping;
 mod load;
 mod locate;
 mod look;
+pub mod ranges;
 mod validate;
 
 pub use load::{ConfigError, ConfigSource, DEFAULT_ASSET, load_file, parse};

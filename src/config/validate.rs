@@ -2,7 +2,7 @@
 //! (`cradle.balls`, `lights[1].intensity`) and what is allowed, so that the loader
 //! can point at the line and the CLI at the flag.
 
-use super::{Config, ContactModel, LightConfig, MAX_BALLS, MaterialConfig, Rgb, Vec3};
+use super::{Config, ContactModel, LightConfig, MAX_BALLS, MaterialConfig, Rgb, Vec3, ranges};
 use std::fmt;
 
 /// The whole-number fields and what they allow: the messages for a value out of
@@ -130,7 +130,7 @@ impl Config {
     pub fn validate(&self) -> Result<(), Vec<FieldError>> {
         let mut c = Checker(Vec::new());
         let k = &self.cradle;
-        if !(1..=MAX_BALLS).contains(&k.balls) {
+        if !ranges::BALLS.contains(&k.balls) {
             c.fail("cradle.balls", k.balls, &format!("1..={MAX_BALLS}"));
         }
         // Ranges keep every mass, energy and period finite and normal, and the
@@ -161,7 +161,7 @@ impl Config {
         c.num(
             "cradle.gap",
             k.gap,
-            (0.0..=10.0).contains(&k.gap),
+            ranges::GAP.contains(&k.gap),
             "0..=10 (m)",
         );
         if k.length.is_finite() {
@@ -201,7 +201,7 @@ impl Config {
         );
 
         let s = &self.start;
-        if (1..=MAX_BALLS).contains(&k.balls) && s.lift > k.balls {
+        if ranges::BALLS.contains(&k.balls) && s.lift > k.balls {
             c.fail(
                 "start.lift",
                 s.lift,
@@ -211,7 +211,7 @@ impl Config {
         c.num(
             "start.angle_deg",
             s.angle_deg,
-            (0.0..=MAX_ANGLE_DEG).contains(&s.angle_deg),
+            ranges::ANGLE_DEG.contains(&s.angle_deg),
             "0..=179.999 (degrees; nearer the top, round-off in the impacts can carry a ball over it)",
         );
 
@@ -226,7 +226,7 @@ impl Config {
         c.num(
             "contact.restitution",
             ct.restitution,
-            (0.0..=1.0).contains(&ct.restitution),
+            ranges::RESTITUTION.contains(&ct.restitution),
             "0..=1",
         );
         c.num(
@@ -262,7 +262,7 @@ impl Config {
         if r.max_depth > 16 {
             c.fail("render.max_depth", r.max_depth, whole("render.max_depth"));
         }
-        if !(1..=64).contains(&r.samples) {
+        if !ranges::SAMPLES.contains(&r.samples) {
             c.fail("render.samples", r.samples, whole("render.samples"));
         }
         c.num(
