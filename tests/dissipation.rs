@@ -178,6 +178,15 @@ fn bench_rocking_reports_phase_energy_and_restitution() {
     let bad = run(&["bench", "rocking", "--duration", "0"]);
     assert_eq!(bad.status.code(), Some(2));
     assert!(stderr(&bad).contains("1..=3600"), "{}", stderr(&bad));
+    // Ideal impacts have no contact to measure: refused, not reported as a
+    // restitution of -0.79 with nothing lost.
+    let ideal = run(&["bench", "rocking", "--duration", "3", "--contact", "ideal"]);
+    assert_eq!(ideal.status.code(), Some(2), "{}", stderr(&ideal));
+    let err = stderr(&ideal);
+    assert!(
+        err.contains("contact.model") && err.contains("allowed: hertz"),
+        "{err}"
+    );
 }
 
 #[test]

@@ -135,9 +135,6 @@ pub fn report(
     plot: Option<&Path>,
     out: &mut impl Write,
 ) -> anyhow::Result<()> {
-    if config.cradle_params().hertz.is_none() {
-        tracing::warn!("ideal impacts: the restitution figures need contact.model hertz");
-    }
     let r = run(config, duration);
     if json {
         serde_json::to_writer(&mut *out, &r)?;

@@ -209,8 +209,19 @@ impl Job {
             BenchCommand::Rocking(a) => {
                 let duration = bench_rocking_duration(&a)?;
                 check_plot(a.plot.as_deref(), common)?;
+                let config = asset()?;
+                if config.contact.model != crate::config::ContactModel::Hertz {
+                    // Its restitution and losses are measured from Hertz contacts;
+                    // ideal impacts would print a made-up restitution and no loss.
+                    return Err(InputError::Flag(
+                        "bench rocking measures Hertz contacts: contact.model is ideal; \
+                         allowed: hertz (`--contact hertz`, or an asset such as \
+                         assets/presets/realistic.ron)"
+                            .to_owned(),
+                    ));
+                }
                 Self::BenchRocking {
-                    config: asset()?,
+                    config,
                     duration,
                     json: a.json,
                     plot: a.plot,
