@@ -99,10 +99,17 @@ pub struct Session {
     /// The right edge (a share of the width) of the region the view fits the
     /// cradle into: left of the control panel while it is open.
     fit_right: f32,
+    /// The last frame's physics could not reach the clock's time within
+    /// [`PHYSICS_BUDGET`]: the swing runs slower than the rate says.
+    behind: bool,
 }
 
 /// The right edge of the fit region without the panel.
 const FULL_WIDTH: f32 = 1.0 - crate::scene::view::FIT_SIDE;
+
+/// The wall-clock time a frame's physics may take: past it, the frame shows
+/// the latest state reached, and the swing runs slower than asked.
+pub const PHYSICS_BUDGET: std::time::Duration = std::time::Duration::from_millis(50);
 
 /// How long the view must rest before frames are anti-aliased again.
 pub const VIEW_REST: std::time::Duration = std::time::Duration::from_millis(250);
@@ -148,6 +155,7 @@ impl Session {
             custom: None,
             history: History::default(),
             fit_right: FULL_WIDTH,
+            behind: false,
         })
     }
 
@@ -466,8 +474,13 @@ impl Session {
                 .last_frame
                 .map_or(0.0, |t| (now - t).as_secs_f64().min(MAX_FRAME_DT));
             // Slow or fast motion: the clock runs at the rate, and the physics is
-            // queried at the clock's time, exact as ever.
-            self.world.frame(if running { dt * self.rate } else { 0.0 });
+            // queried at the clock's time, exact as ever; a cradle whose physics
+            // cannot keep up shows the latest time it reached by the frame's
+            // deadline, so the window keeps answering.
+            let before = self.time();
+            let want = if running { dt * self.rate } else { 0.0 };
+            self.world.frame_by(want, Some(now + PHYSICS_BUDGET));
+            self.behind = want > 0.0 && self.time() - before < 0.999 * want;
             let now_traced = self.tracer.frame(&self.pool, self.world.scene(), running);
             traced = now_traced.or(traced);
             if running && dt > 0.0 {

@@ -302,6 +302,38 @@ fn the_window_traces_at_most_4k_pixels_keeping_the_shape() {
 }
 
 #[test]
+fn the_window_caps_samples_and_balls_work_too() {
+    let most = crate::app::max_window_work();
+    // 4K at 64 uniform samples (once a window that never quit): the samples go
+    // first, down to what fits; the size stays.
+    let mut c = Config::default();
+    (c.render.width, c.render.height) = (3840, 2160);
+    (c.render.samples, c.render.adaptive) = (64, false);
+    crate::app::fit_window(&mut c);
+    assert_eq!((c.render.width, c.render.height), (3840, 2160));
+    assert_eq!(c.render.samples, 1, "uniform samples multiply the work");
+    // 4K at 200 balls: one sample and still too much: a smaller picture of the
+    // same shape, within the cap.
+    let mut c = Config::default();
+    (c.render.width, c.render.height) = (3840, 2160);
+    c.cradle.balls = 200;
+    crate::app::fit_window(&mut c);
+    assert_eq!(c.render.samples, 1);
+    let (w, h) = (c.render.width, c.render.height);
+    assert!(
+        w < 3840 && (f64::from(w) / f64::from(h) - 16.0 / 9.0).abs() < 0.01,
+        "{w}x{h}"
+    );
+    assert!(crate::app::window_work(&c) <= most * 1.0001);
+    // The default window at 200 balls is within the cap: untouched.
+    let mut c = Config::default();
+    c.cradle.balls = 200;
+    let before = c.clone();
+    crate::app::fit_window(&mut c);
+    assert_eq!(c, before);
+}
+
+#[test]
 fn time_rates_halve_and_double_within_bounds_and_scale_the_clock() {
     let mut s = session();
     for _ in 0..10 {

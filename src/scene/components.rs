@@ -105,6 +105,11 @@ pub struct SimClock {
     pub t: f64,
     /// Length of this frame, set by the driver before each run of the schedule.
     pub frame_dt: f64,
+    /// When the physics of this frame must be done (the window's frame loop):
+    /// a cradle that cannot reach the clock's time by then shows the latest
+    /// time it reached, and the clock waits there (slow motion). `None`:
+    /// exactly the clock's time, however long it takes (headless).
+    pub deadline: Option<std::time::Instant>,
 }
 
 /// The physics and its latest state.

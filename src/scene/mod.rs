@@ -73,7 +73,15 @@ impl CradleWorld {
 
     /// Runs one frame that lasted `dt` seconds of wall-clock time.
     pub fn frame(&mut self, dt: f64) {
-        self.world.resource_mut::<SimClock>().frame_dt = dt;
+        self.frame_by(dt, None);
+    }
+
+    /// Runs one frame that lasted `dt` seconds, its physics done by `deadline`
+    /// (where given): a cradle too slow for it shows the latest time it reached.
+    pub fn frame_by(&mut self, dt: f64, deadline: Option<std::time::Instant>) {
+        let mut clock = self.world.resource_mut::<SimClock>();
+        clock.frame_dt = dt;
+        clock.deadline = deadline;
         self.schedule.run(&mut self.world);
     }
 
@@ -83,6 +91,7 @@ impl CradleWorld {
         let mut clock = self.world.resource_mut::<SimClock>();
         clock.t = t;
         clock.frame_dt = 0.0;
+        clock.deadline = None;
         self.schedule.run(&mut self.world);
     }
 

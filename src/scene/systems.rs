@@ -37,10 +37,17 @@ pub fn advance_clock(state: Res<SimState>, mut clock: ResMut<SimClock>) {
     }
 }
 
-/// Physics: the cradle's state at the clock's time.
-pub fn step_physics(clock: Res<SimClock>, mut sim: ResMut<CradleState>) {
+/// Physics: the cradle's state at the clock's time, or, past the frame's
+/// deadline, at the latest time reached (the clock then waits there).
+pub fn step_physics(mut clock: ResMut<SimClock>, mut sim: ResMut<CradleState>) {
     if sim.snapshot.t != clock.t {
-        let snapshot = sim.cradle.snapshot(clock.t);
+        let snapshot = match clock.deadline {
+            Some(d) => sim.cradle.snapshot_by(clock.t, d),
+            None => sim.cradle.snapshot(clock.t),
+        };
+        if snapshot.t < clock.t {
+            clock.t = snapshot.t;
+        }
         sim.snapshot = snapshot;
     }
 }

@@ -5,8 +5,9 @@
 # view, Tab shows the control panel and the keys still work with it open, S
 # while paused shows a notice, a preset loads and Ctrl+Z undoes it, 45 rapid
 # resizes do not hang it, a saved config reloads and a bad one keeps the
-# scene, S saves unique screenshots, Escape exits 0, and a window destroyed
-# from outside exits 0.
+# scene, S saves unique screenshots, Escape exits 0, a window destroyed
+# from outside exits 0, and heavy settings (200 balls of the realistic cradle,
+# 4K at 64 samples) still answer Escape.
 set -uo pipefail
 bin="$1"
 work="$(mktemp -d)"
@@ -163,6 +164,21 @@ sleep 1; xdotool key --window "$wid" space; sleep 0.5
 wait_exit
 [ "$code" = "0" ] && ! grep -q panicked "$work/destroy.log" \
   && ok "destroyed from outside: exits 0" || { bad "destroyed from outside: exits 0 (got '${code:-still running}')"; cat "$work/destroy.log"; }
+
+# Heavy settings still answer Escape at once: the realistic cradle of 200
+# balls swinging (its physics slower than the frames: slow motion), and 4K at
+# 64 uniform samples (capped to a frame's worth of work).
+assets="$(dirname "$bin")/../../assets"
+for args in "--config $assets/presets/realistic.ron --balls 200" "--width 3840 --height 2160 --samples 64 --aa uniform"; do
+  # shellcheck disable=SC2086
+  "$bin" $args > "$work/heavy.log" 2>&1 &
+  pid=$!
+  wid=$(find_window)
+  xdotool windowfocus "$wid" 2>/dev/null; sleep 1; xdotool key space; sleep 3; xdotool key Escape
+  wait_exit
+  [ "$code" = "0" ] && ok "heavy settings answer Escape ($args)" \
+    || { bad "heavy settings answer Escape ($args; got '${code:-still running}')"; kill -9 "$pid" 2>/dev/null; }
+done
 
 # No usable adapter (Metal does not exist here): a plain message and exit 1.
 WGPU_BACKEND=metal timeout 20 "$bin" --width 64 --height 32 > "$work/noadapter.log" 2>&1

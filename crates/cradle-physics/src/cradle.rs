@@ -36,6 +36,8 @@ pub struct Cradle {
     params: CradleParams,
     engine: Engine,
     energy0: f64,
+    /// The time of the last snapshot: a later one is never earlier.
+    last: f64,
 }
 
 impl Cradle {
@@ -84,11 +86,13 @@ impl Cradle {
             params,
             engine,
             energy0,
+            last: 0.0,
         }
     }
 
     /// The state at time `t` (s). Times must not decrease from call to call.
     pub fn snapshot(&mut self, t: f64) -> Snapshot {
+        self.last = self.last.max(t);
         let (theta, omega, lost, collisions) = match &mut self.engine {
             Engine::Exact(e) => {
                 let (th, om, lost) = e.state_at(t);
@@ -110,6 +114,20 @@ impl Cradle {
             collisions,
             lost,
         }
+    }
+
+    /// The state at `t` (s), or, if getting there takes past `deadline`, at the
+    /// latest time before `t` reached by then (its `t` says which): a frame
+    /// loop can show a slow cradle in slow motion and stay responsive. The
+    /// engine's steps and events are those of [`Self::snapshot`], so every state
+    /// is the one a call without a deadline gives at that time.
+    pub fn snapshot_by(&mut self, t: f64, deadline: std::time::Instant) -> Snapshot {
+        let reached = match &mut self.engine {
+            Engine::Exact(e) => e.advance_until(t, Some(deadline)),
+            Engine::Damped(e) => e.advance_until(t, Some(deadline)),
+            Engine::Stepped(e) => e.advance_until(t, Some(deadline)),
+        };
+        self.snapshot(reached.max(self.last).min(t))
     }
 
     /// The physical parameters.

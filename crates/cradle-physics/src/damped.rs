@@ -136,11 +136,22 @@ impl DampedEngine {
     /// Takes every step that ends at or before `t`; returns the state at `t` and
     /// the energy lost by then (contacts, drag).
     pub fn state_at(&mut self, t: f64) -> (Vec<f64>, Vec<f64>, [f64; 2]) {
+        self.advance_until(t, None);
+        self.state_now(t)
+    }
+
+    /// Takes every step that ends at or before `t`, or as many as fit before
+    /// `deadline`; returns the time the state can now be had at without more
+    /// steps (the steps are the same either way).
+    pub fn advance_until(&mut self, t: f64, deadline: Option<std::time::Instant>) -> f64 {
         let n = self.touching.len() + 1;
         let params = self.params;
         let row = Row::new(&params, self.k, n);
         let mut k_buf: [Vec<f64>; 7] = std::array::from_fn(|_| vec![0.0; row.len()]);
         while !self.stuck && self.t < t {
+            if deadline.is_some_and(|d| std::time::Instant::now() >= d) {
+                return self.t;
+            }
             let Some((h, y1, next)) = self.accepted(&row, &mut k_buf) else {
                 tracing::warn!(
                     "damped step below the resolution of t = {} s; state held",
@@ -161,6 +172,14 @@ impl DampedEngine {
                 *was = now;
             }
         }
+        t
+    }
+
+    /// The state at `t`: one shortened step from the last step point.
+    fn state_now(&self, t: f64) -> (Vec<f64>, Vec<f64>, [f64; 2]) {
+        let n = self.touching.len() + 1;
+        let row = Row::new(&self.params, self.k, n);
+        let mut k_buf: [Vec<f64>; 7] = std::array::from_fn(|_| vec![0.0; row.len()]);
         let y = if self.stuck || t <= self.t {
             self.y.clone()
         } else {

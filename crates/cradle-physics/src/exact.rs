@@ -277,22 +277,32 @@ impl ExactEngine {
 
     /// Handles every event up to time `t`.
     pub fn advance_to(&mut self, t: f64) {
+        self.advance_until(t, None);
+    }
+
+    /// Handles every event up to time `t`, or as many as fit before `deadline`;
+    /// returns the time the state can now be had at without handling more
+    /// (the events are the same either way).
+    pub fn advance_until(&mut self, t: f64, deadline: Option<std::time::Instant>) -> f64 {
         loop {
+            if deadline.is_some_and(|d| std::time::Instant::now() >= d) {
+                return self.known_until().min(t);
+            }
             if let Some(ph) = self.phase.as_ref().filter(|ph| !ph.end.separated) {
                 // A contact still going on: its next segment, when asked for.
                 if ph.end.t >= t {
-                    return;
+                    return t;
                 }
                 let (t0, th, om) = (ph.end.t, ph.end.theta.clone(), ph.end.omega.clone());
                 self.run_segment(t0, th, om);
                 continue;
             }
             if self.active.is_empty() {
-                return;
+                return t;
             }
             let w0 = self.t_event + self.scanned as f64 * self.window;
             if w0 >= t {
-                return;
+                return t;
             }
             let w1 = self.t_event + (self.scanned + 1) as f64 * self.window;
             let hit = self
@@ -304,9 +314,19 @@ impl ExactEngine {
                 Some((te, a)) if te <= t => self.apply(te, a),
                 // An impact after t stays unfound until asked for: rescanning this
                 // window later finds the same one.
-                Some(_) => return,
+                Some(_) => return t,
                 None => self.scanned += 1,
             }
+        }
+    }
+
+    /// The time up to which every event is handled: the end of a contact
+    /// segment still going on, else the end of the windows scanned.
+    fn known_until(&self) -> f64 {
+        match self.phase.as_ref().filter(|ph| !ph.end.separated) {
+            Some(ph) => ph.end.t,
+            None if self.active.is_empty() => f64::INFINITY,
+            None => self.t_event + self.scanned as f64 * self.window,
         }
     }
 

@@ -184,9 +184,19 @@ impl SteppedEngine {
 
     /// State at `t` (s, >= every earlier call's `t`).
     pub fn state_at(&mut self, t: f64) -> (Vec<f64>, Vec<f64>) {
+        self.advance_until(t, None);
+        self.state_now(t)
+    }
+
+    /// Takes the grid steps up to `t`, or as many as fit before `deadline`;
+    /// returns the time the state can now be had at without more steps.
+    pub fn advance_until(&mut self, t: f64, deadline: Option<std::time::Instant>) -> f64 {
         // Tolerate t a hair below a grid point (n*every vs m*dt rounding).
         let target = ((t / self.dt) * (1.0 + 1e-12)).floor() as u64;
         while self.steps < target {
+            if deadline.is_some_and(|d| std::time::Instant::now() >= d) {
+                return self.steps as f64 * self.dt;
+            }
             let (mut th, mut om) = (
                 std::mem::take(&mut self.theta),
                 std::mem::take(&mut self.omega),
@@ -196,6 +206,11 @@ impl SteppedEngine {
             self.omega = om;
             self.steps += 1;
         }
+        t
+    }
+
+    /// The state at `t`, at most one step past the last grid step taken.
+    fn state_now(&self, t: f64) -> (Vec<f64>, Vec<f64>) {
         let rest = t - self.steps as f64 * self.dt;
         let (mut th, mut om) = (self.theta.clone(), self.omega.clone());
         if rest > 0.0 {

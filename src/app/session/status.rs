@@ -63,7 +63,17 @@ impl Session {
             let white = [235, 235, 235];
             let cradle = self.world.cradle();
             let err = cradle.cradle.energy_rel_error(&cradle.snapshot);
-            let clock = format!("t {:7.2} s  rate {}", self.time(), rate_text(self.rate));
+            // A cradle whose physics cannot keep up says so by its rate.
+            let slowed = if self.behind && self.running() {
+                " (physics slower)"
+            } else {
+                ""
+            };
+            let clock = format!(
+                "t {:7.2} s  rate {}{slowed}",
+                self.time(),
+                rate_text(self.rate)
+            );
             let first = if let Some(ball) = self.dragging {
                 (
                     format!("HOLDING ball {}: let go to swing  {clock}", ball + 1),
