@@ -156,8 +156,8 @@ fn create_folder(path: &Path) -> Result<(), WriteError> {
 /// Temporary files being written: Ctrl-C removes them.
 static LIVE: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
 
-/// Makes Ctrl-C remove the temporary files of unfinished writes before the
-/// program ends (exit code 130), so that none is left behind.
+/// Makes Ctrl-C, SIGTERM and SIGHUP remove the temporary files of unfinished
+/// writes before the program ends (exit code 130), so that none is left behind.
 pub fn clean_up_on_interrupt() {
     let handler = || {
         if let Ok(live) = LIVE.lock() {
@@ -190,10 +190,17 @@ impl AtomicFile {
             .file_name()
             .map_or_else(|| "out".into(), |n| n.to_string_lossy().into_owned());
         let tmp = path.with_file_name(format!(".{name}.{}.part", std::process::id()));
-        let file = File::create(&tmp).map_err(|e| io_fail(path, &e))?;
+        // Known before it exists: a signal between the two would otherwise leave
+        // an empty file no one removes.
         if let Ok(mut live) = LIVE.lock() {
             live.push(tmp.clone());
         }
+        let file = File::create(&tmp).map_err(|e| {
+            if let Ok(mut live) = LIVE.lock() {
+                live.retain(|p| p != &tmp);
+            }
+            io_fail(path, &e)
+        })?;
         Ok(Self {
             path: path.to_path_buf(),
             tmp,

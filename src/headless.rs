@@ -30,7 +30,7 @@ pub enum Output {
 
 impl Output {
     /// Checks the paths this output will write, before anything is traced
-    /// ([`export::check_output`]; a sequence's folder and its first frame).
+    /// ([`export::check_output`]; a sequence's folder and every frame's name).
     ///
     /// # Errors
     /// A path that cannot or must not be written.
@@ -38,9 +38,10 @@ impl Output {
         match self {
             Self::Png(p) => export::check_output(p, Kind::Png, input),
             Self::Gif { path, .. } => export::check_output(path, Kind::Gif, input),
-            Self::Sequence { dir, first, .. } => {
-                export::check_output(&frame_path(dir, *first), Kind::Png, input)
-            }
+            Self::Sequence {
+                dir, first, frames, ..
+            } => (*first..first.saturating_add(*frames))
+                .try_for_each(|n| export::check_output(&frame_path(dir, n), Kind::Png, input)),
         }
     }
 }
@@ -87,10 +88,16 @@ pub fn render(
             // Frame n at time start + n / fps, whichever process renders it.
             for n in *first..*first + *frames {
                 let path = frame_path(dir, n);
-                // Each frame, as the first was before tracing: never over a file
-                // that is not a PNG, nor over the config.
-                export::check_output(&path, Kind::Png, input)?;
-                export::write_png(&path, &frame_at(start + f64::from(n) / fps))?;
+                // Each frame again, as all were before tracing: never over a file
+                // put there since that is not a PNG, nor over the config. What
+                // changed under a running sequence (its folder removed, a file
+                // put in its way) is a failure of the run (exit 1), not bad input.
+                export::check_output(&path, Kind::Png, input)
+                    .and_then(|()| export::write_png(&path, &frame_at(start + f64::from(n) / fps)))
+                    .map_err(|e| WriteError {
+                        bad_path: false,
+                        ..e
+                    })?;
                 written.push(path);
                 progress.inc(1);
             }

@@ -252,8 +252,15 @@ fn gif_delays_keep_the_average_rate() {
 }
 
 #[test]
-fn ctrl_c_leaves_no_partial_file() {
-    let dir = temp_dir("ctrl-c");
+fn ctrl_c_sigterm_and_sighup_leave_no_partial_file() {
+    for signal in ["-INT", "-TERM", "-HUP"] {
+        interrupted_gif_leaves_nothing(signal);
+    }
+}
+
+/// A long GIF render stopped by `signal` exits 130 and leaves no file.
+fn interrupted_gif_leaves_nothing(signal: &str) {
+    let dir = temp_dir(&format!("signal{signal}"));
     let gif = dir.join("long.gif");
     let mut child = Command::new(env!("CARGO_BIN_EXE_newtons-cradle"))
         .args([
@@ -270,13 +277,61 @@ fn ctrl_c_leaves_no_partial_file() {
         .expect("starts");
     std::thread::sleep(std::time::Duration::from_millis(1500));
     let killed = Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
+        .args([signal, &child.id().to_string()])
         .status()
         .expect("kill runs");
     assert!(killed.success());
     let status = child.wait().expect("ends");
-    assert_eq!(status.code(), Some(130), "interrupted");
-    assert!(!gif.exists(), "no GIF without its end");
-    assert!(leftovers(&dir).is_empty(), "{:?}", leftovers(&dir));
+    assert_eq!(status.code(), Some(130), "{signal}: interrupted");
+    assert!(!gif.exists(), "{signal}: no GIF without its end");
+    assert!(
+        leftovers(&dir).is_empty(),
+        "{signal}: {:?}",
+        leftovers(&dir)
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn every_frame_path_of_a_sequence_is_checked_before_tracing() {
+    // A file that is not a picture at the last frame's name: refused at once,
+    // before a single frame is traced or written.
+    let dir = temp_dir("sequence-paths");
+    let frames = dir.join("frames");
+    std::fs::create_dir_all(&frames).expect("folder");
+    std::fs::write(frames.join("frame_0009.png"), "my notes").expect("write");
+    let o = run(&[
+        "render",
+        "--frames",
+        "10",
+        "--out",
+        frames.to_str().expect("utf-8"),
+        "--width",
+        "32",
+        "--height",
+        "16",
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("frame_0009.png"), "{}", stderr(&o));
+    assert!(
+        !frames.join("frame_0000.png").exists(),
+        "nothing traced first"
+    );
+    assert_eq!(
+        std::fs::read_to_string(frames.join("frame_0009.png")).expect("kept"),
+        "my notes"
+    );
+    // A sequence into a name like a picture's is refused, not made a folder.
+    let k = dir.join("k.png");
+    let o = run(&[
+        "render",
+        "--frames",
+        "2",
+        "--out",
+        k.to_str().expect("utf-8"),
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("allowed: --out DIR/"), "{}", stderr(&o));
+    assert!(!k.exists(), "no folder named k.png");
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -131,6 +131,9 @@ pub fn log_log_svg(path: &Path, panels: &[Panel], axes: Axes) -> anyhow::Result<
     Ok(())
 }
 
+/// The most lines [`line_svg`] labels in a legend.
+const MOST_LABELLED: usize = 12;
+
 /// Writes one chart of lines on linear axes (from 0) as SVG, no markers: long
 /// time series such as `bench rocking`'s amplitudes. `labels`: (x, y) axis labels.
 ///
@@ -150,8 +153,15 @@ pub fn line_svg(
     let root = SVGBackend::with_string(&mut svg, (900, 520)).into_drawing_area();
     let draw = || -> Result<(), Box<dyn std::error::Error + '_>> {
         root.fill(&WHITE)?;
+        // Past a dozen lines a legend would run off the picture (200 balls).
+        let legend = series.len() <= MOST_LABELLED;
+        let caption = if legend {
+            title.to_owned()
+        } else {
+            format!("{title} ({} lines, too many to label)", series.len())
+        };
         let mut chart = ChartBuilder::on(&root)
-            .caption(title, ("sans-serif", 20))
+            .caption(caption, ("sans-serif", 20))
             .margin(12)
             .x_label_area_size(44)
             .y_label_area_size(64)
@@ -164,19 +174,21 @@ pub fn line_svg(
         for (i, s) in series.iter().enumerate() {
             let colour = Palette99::pick(i).to_rgba();
             let pts: Vec<(f64, f64)> = s.points.iter().filter(finite).copied().collect();
-            chart
-                .draw_series(LineSeries::new(pts, colour.stroke_width(2)))?
-                .label(s.name.as_str())
-                .legend(move |(x, y)| {
+            let drawn = chart.draw_series(LineSeries::new(pts, colour.stroke_width(2)))?;
+            if legend {
+                drawn.label(s.name.as_str()).legend(move |(x, y)| {
                     PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2))
                 });
+            }
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .draw()?;
+        if legend {
+            chart
+                .configure_series_labels()
+                .position(SeriesLabelPosition::UpperRight)
+                .background_style(WHITE.mix(0.85))
+                .border_style(BLACK)
+                .draw()?;
+        }
         root.present()?;
         Ok(())
     };
@@ -184,4 +196,41 @@ pub fn line_svg(
     drop(root);
     crate::export::write_all(path, svg.as_bytes())?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{Series, line_svg};
+
+    /// `n` lines named `ball 1`.. into an SVG; its text.
+    fn lines_svg(n: usize) -> String {
+        let dir = std::env::temp_dir().join(format!("nc-plot-{n}-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("temp dir");
+        let path = dir.join("lines.svg");
+        let series: Vec<Series> = (0..n)
+            .map(|i| Series {
+                name: format!("ball {}", i + 1),
+                points: vec![(0.0, i as f64), (1.0, 1.0 + i as f64)],
+            })
+            .collect();
+        line_svg(&path, "Amplitude", &series, ("t", "a")).expect("written");
+        let text = std::fs::read_to_string(&path).expect("read");
+        std::fs::remove_dir_all(&dir).ok();
+        text
+    }
+
+    #[test]
+    fn a_dozen_lines_get_a_legend_and_two_hundred_do_not() {
+        let few = lines_svg(5);
+        assert!(
+            few.contains("ball 5") && !few.contains("too many"),
+            "labelled"
+        );
+        let many = lines_svg(200);
+        assert!(many.contains("200 lines, too many to label"));
+        assert!(
+            !many.contains("ball 1<") && !many.contains("ball 200"),
+            "no legend"
+        );
+    }
 }

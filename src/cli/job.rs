@@ -356,12 +356,26 @@ fn render_output(a: &RenderArgs) -> Result<crate::headless::Output, InputError> 
             frames: frames.unwrap_or(60),
             fps: a.fps,
         }),
-        (Some(dir), None, Some(frames)) => Ok(Output::Sequence {
-            dir: dir.clone(),
-            first,
-            frames,
-            fps: a.fps,
-        }),
+        (Some(dir), None, Some(frames)) => {
+            // A sequence goes into a folder: `--out k.png` would make a folder
+            // named like a picture.
+            let picture = dir.extension().and_then(|e| e.to_str()).is_some_and(|e| {
+                ["png", "gif", "jpg", "jpeg"].contains(&e.to_ascii_lowercase().as_str())
+            });
+            if picture {
+                return Err(InputError::Flag(format!(
+                    "--out {} with --frames: a sequence goes into a folder; allowed: --out DIR/ \
+                     (or --out FILE.png without --frames for one picture, --gif FILE.gif for an animation)",
+                    dir.display()
+                )));
+            }
+            Ok(Output::Sequence {
+                dir: dir.clone(),
+                first,
+                frames,
+                fps: a.fps,
+            })
+        }
         (Some(png), None, None) => Ok(Output::Png(png.clone())),
         (None, None, _) => Err(InputError::Flag(
             "say where to write: --out FILE.png, --frames N --out DIR/, or --gif FILE.gif".into(),
