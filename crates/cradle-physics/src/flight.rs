@@ -45,6 +45,12 @@ pub struct Flight {
 }
 
 impl Flight {
+    /// The same flight with its times counted from `by` (s) later: its start
+    /// moves back by `by` (the engine's epoch moved forward).
+    pub(crate) fn shift(&mut self, by: f64) {
+        self.t0 -= by;
+    }
+
     /// The flight through angle `theta` (rad) with angular velocity `omega` (rad/s) at
     /// time `t0` (s), for small-angle angular frequency `w0` (rad/s, > 0).
     #[must_use]
