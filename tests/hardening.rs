@@ -335,3 +335,54 @@ fn every_frame_path_of_a_sequence_is_checked_before_tracing() {
     assert!(!k.exists(), "no folder named k.png");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn messages_name_the_flag_or_key_that_breaks_the_rule() {
+    // The asset's dissipation is refused with the RK4 flag: the flag is named.
+    let o = run(&[
+        "simulate",
+        "--config",
+        "assets/presets/realistic.ron",
+        "--integrator",
+        "rk4",
+        "--width",
+        "100",
+        "--duration",
+        "0",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = stderr(&o);
+    assert!(err.contains("refused with --integrator rk4"), "{err}");
+    assert!(
+        !err.contains("--width") && !err.contains("applying )"),
+        "{err}"
+    );
+    // A sequence whose last frame is too late: no --time that was not given.
+    let o = run(&[
+        "render", "--frames", "2", "--first", "10000000", "--fps", "1", "--out", "x/",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = stderr(&o);
+    assert!(
+        !err.contains("--time") && err.contains("frame 10000001"),
+        "{err}"
+    );
+    // A name written as a string: the names allowed.
+    let dir = temp_dir("named-values");
+    let path = dir.join("quoted.ron");
+    std::fs::write(&path, "(contact: (model: \"hertz\"))").expect("write");
+    let o = run(&[
+        "simulate",
+        "--config",
+        path.to_str().expect("utf-8"),
+        "--duration",
+        "0",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("allowed: ideal, hertz"),
+        "{}",
+        stderr(&o)
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}

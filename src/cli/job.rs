@@ -339,10 +339,17 @@ fn render_output(a: &RenderArgs) -> Result<crate::headless::Output, InputError> 
     // Every frame's time is capped, not just the first one's.
     let last = a.time + f64::from(first + frames.unwrap_or(1).saturating_sub(1)) / a.fps;
     if last > 1e6 {
+        // Name only what was given: the start time where it is not 0, the first
+        // frame where a sequence starts later.
+        let start = if a.time == 0.0 {
+            String::new()
+        } else {
+            format!("--time {} + ", a.time.short())
+        };
+        let n = first + frames.unwrap_or(1).saturating_sub(1);
         return Err(InputError::Flag(format!(
-            "--time {} with --frames {} at --fps {} ends at {} s; allowed: every frame at most 1e6 s",
-            a.time.short(),
-            frames.unwrap_or(1),
+            "the last frame, {start}frame {n} at --fps {}, is at {} s; allowed: every frame at \
+             most 1e6 s (a smaller --first or --frames, or a higher --fps)",
             a.fps.short(),
             last.short()
         )));

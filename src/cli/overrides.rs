@@ -27,11 +27,7 @@ impl Common {
     /// The names of the override flags given, in schema order.
     #[must_use]
     pub fn given_flags(&self) -> Vec<&'static str> {
-        let mut flags: Vec<&'static str> = self.given().into_iter().map(|g| g.1).collect();
-        if self.integrator.is_some() {
-            flags.push("--integrator");
-        }
-        flags
+        self.given().into_iter().map(|g| g.1).collect()
     }
 
     /// The flags given, as `(config field path, flag name, value as typed)`.
@@ -50,6 +46,12 @@ impl Common {
             "contact.model",
             "--contact",
             self.contact.map(|v| format!("{v:?}").to_lowercase()),
+        );
+        add(
+            "physics.integrator",
+            "--integrator",
+            self.integrator
+                .map(|v| crate::physics::Integrator::from(v).name().to_owned()),
         );
         add("physics.dt", "--dt", self.dt.map(|v| v.short()));
         add(
@@ -143,13 +145,27 @@ impl Common {
     }
 }
 
-/// Names the flag that set a field, or says which field of the asset a flag broke.
+/// Names the flag that set a field; or, for a field of the asset, the flags
+/// its rule names (`--integrator rk4` for a dissipation that needs the exact
+/// integrator), else the flags given, else that the asset holds it.
 fn flag_message(e: &FieldError, given: &[(&str, &str, String)]) -> String {
     if let Some((_, flag, raw)) = given.iter().find(|(field, _, _)| *field == e.path) {
         format!("{flag} {raw}: not allowed; allowed: {}", e.allowed)
     } else {
-        let flags: Vec<&str> = given.iter().map(|g| g.1).collect();
-        format!("{e} (after applying {})", flags.join(", "))
+        let named: Vec<String> = given
+            .iter()
+            .filter(|(field, _, _)| e.allowed.contains(field))
+            .map(|(_, flag, raw)| format!("{flag} {raw}"))
+            .collect();
+        let all: Vec<String> = given
+            .iter()
+            .map(|(_, flag, raw)| format!("{flag} {raw}"))
+            .collect();
+        match (named.is_empty(), all.is_empty()) {
+            (false, _) => format!("{e} (the asset's value, refused with {})", named.join(", ")),
+            (true, false) => format!("{e} (the asset's value, after {})", all.join(", ")),
+            (true, true) => format!("{e} (in the asset)"),
+        }
     }
 }
 

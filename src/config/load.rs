@@ -139,6 +139,21 @@ pub fn load_file(path: &Path) -> Result<Config, ConfigError> {
 
 /// The parser's message, and when the error stands in the value of a whole-number
 /// field (a fraction, a sign, too many digits), which field and what it allows.
+/// The names a key whose value is a name allows (`model`: `ideal`, `hertz`).
+fn names_of(key: &str) -> Option<String> {
+    match key {
+        "model" => Some("ideal, hertz".to_owned()),
+        "integrator" => Some(
+            crate::physics::Integrator::ALL
+                .iter()
+                .map(|i| i.name())
+                .collect::<Vec<_>>()
+                .join(", "),
+        ),
+        _ => None,
+    }
+}
+
 fn syntax_message(src: &str, (line, col): (usize, usize), message: &str) -> String {
     let text: Vec<char> = src
         .lines()
@@ -177,6 +192,11 @@ fn syntax_message(src: &str, (line, col): (usize, usize), message: &str) -> Stri
         Some(&name[start..]).filter(|k| !k.is_empty())
     });
     match key {
+        // The keys whose values are names: say which, written bare.
+        Some(k) if names_of(k).is_some() => format!(
+            "in `{k}`: {message}; allowed: {} (names, without quotes)",
+            names_of(k).unwrap_or_default()
+        ),
         Some(k) => format!("in `{k}`: {message}"),
         None => message.to_owned(),
     }
