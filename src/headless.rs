@@ -64,6 +64,7 @@ pub fn render(
 ) -> anyhow::Result<Vec<PathBuf>> {
     let pool = trace::pool(config.render.threads)?;
     let mut world = CradleWorld::new(config);
+    reach(&mut world, start);
     // Frames after the first re-trace only what the swing can change.
     let mut inc = trace::Incremental::new();
     let mut frame_at = |t: f64| -> Image {
@@ -117,6 +118,32 @@ pub fn render(
         }
     }
     Ok(written)
+}
+
+/// Works out the swing up to the start time `start` (s), with a bar on a
+/// terminal and, where it will take over 10 s, a log line saying how long.
+fn reach(world: &mut CradleWorld, start: f64) {
+    let clock = std::time::Instant::now();
+    let bar = crate::bench::progress_bar(start.ceil().max(1.0) as u64, "s simulated");
+    let mut said = false;
+    world.reach(start, |t| {
+        bar.set_position(t as u64);
+        let spent = clock.elapsed().as_secs_f64();
+        let left = if t > 0.0 {
+            spent * (start / t - 1.0)
+        } else {
+            f64::INFINITY
+        };
+        if !said && spent >= 2.0 && left > 10.0 {
+            said = true;
+            tracing::info!(
+                "working out the swing to t = {start} s: {:.0} s so far, about {:.0} s more",
+                spent,
+                left.min(1e9)
+            );
+        }
+    });
+    bar.finish_and_clear();
 }
 
 /// `render`: logs what it makes, renders it, and logs what it wrote.

@@ -85,9 +85,12 @@ fn line(out: &mut impl Write, value: &impl Serialize) -> io::Result<()> {
     writeln!(out)
 }
 
+/// How long the physics works between looks at its progress.
+const PROBE: std::time::Duration = std::time::Duration::from_secs(1);
+
 /// Keeps a long run talking: its lines leave the buffer at least every 0.1 s
-/// of wall time, and once it is clear that the run will take more than a
-/// minute, stderr says about how long.
+/// of wall time, and once it is clear that the run will take more than 10 s
+/// longer, stderr says about how long.
 struct Feedback {
     start: Instant,
     flushed: Instant,
@@ -113,7 +116,7 @@ impl Feedback {
         let spent = self.start.elapsed().as_secs_f64();
         if !self.warned && spent >= 1.0 && t > 0.0 {
             let left = spent * (self.duration / t - 1.0);
-            if left > 60.0 {
+            if left > 10.0 {
                 tracing::warn!(
                     "this run will take about {} more (from its first {spent:.0} s); Ctrl-C stops it",
                     human(left)
@@ -182,9 +185,21 @@ pub fn simulate(
     let (mut max_err, mut e_last, mut collisions) = (0.0_f64, e0, 0);
     let mut lost = [0.0; 2];
     let mut feedback = Feedback::new(start, duration);
+    let bar = crate::bench::progress_bar(duration.ceil().max(1.0) as u64, "s simulated");
     for n in 0..=sample_count(duration, every) {
         let t = n as f64 * every;
-        let s = cradle.snapshot(t);
+        // A second of work at a time: a sample far ahead (a coarse --every)
+        // still shows progress and its estimate. Stopping and going on leaves
+        // the engines' steps and events as they are.
+        let s = loop {
+            let s = cradle.snapshot_by(t, Instant::now() + PROBE);
+            if s.t >= t {
+                break s;
+            }
+            bar.set_position(s.t as u64);
+            feedback.after(s.t, out)?;
+        };
+        bar.set_position(t as u64);
         let e = cradle.energy(&s);
         if !(e.is_finite() && s.theta.iter().chain(&s.omega).all(|x| x.is_finite())) {
             // Never a null in the JSON: stop, and say where.
@@ -207,6 +222,7 @@ pub fn simulate(
         line(out, &sample)?;
         feedback.after(t, out)?;
     }
+    bar.finish_and_clear();
     let summary = Summary {
         duration,
         collisions,

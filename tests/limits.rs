@@ -148,3 +148,32 @@ fn the_stress_suite_says_which_scenario_runs() {
     let e = stderr(&o);
     assert!(e.contains("stress 1/") && e.contains("200 balls"), "{e}");
 }
+
+#[test]
+fn a_coarse_every_still_says_how_long_the_run_will_take() {
+    // One sample at the start and the next weeks away (RK4 at 1e-7 s to
+    // t = 1e6 s): the physics reports its progress between samples, so the
+    // estimate comes within seconds, not with the second sample.
+    let mut child = Command::new(env!("CARGO_BIN_EXE_newtons-cradle"))
+        .args(["simulate", "--integrator", "rk4", "--dt", "1e-7"])
+        .args(["--duration", "1e6", "--every", "1e6"])
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("starts");
+    let err = child.stderr.take().expect("stderr");
+    let (tx, rx) = mpsc::channel();
+    std::thread::spawn(move || {
+        for line in BufReader::new(err).lines().map_while(Result::ok) {
+            if tx.send(line).is_err() {
+                return;
+            }
+        }
+    });
+    // Generous: the estimate comes after 1 s of work.
+    let said = std::iter::from_fn(|| rx.recv_timeout(Duration::from_mins(1)).ok())
+        .find(|l| l.contains("will take about"));
+    child.kill().ok();
+    child.wait().ok();
+    assert!(said.is_some(), "no estimate");
+}

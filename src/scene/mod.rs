@@ -95,6 +95,25 @@ impl CradleWorld {
         self.schedule.run(&mut self.world);
     }
 
+    /// Works the physics out up to time `t` (s) a second of work at a time,
+    /// telling `progress` the time reached after each: a far `t` (`render
+    /// --time 1e6`) takes minutes. The states are those [`Self::show_at`] gives.
+    pub fn reach(&mut self, t: f64, mut progress: impl FnMut(f64)) {
+        loop {
+            let deadline = std::time::Instant::now() + std::time::Duration::from_secs(1);
+            let reached = self
+                .world
+                .resource_mut::<CradleState>()
+                .cradle
+                .snapshot_by(t, deadline)
+                .t;
+            if reached >= t {
+                return;
+            }
+            progress(reached);
+        }
+    }
+
     /// Replaces the scene by one spawned from `config`, at t = 0, running as
     /// `config.start.running` says: the one way to reset.
     pub fn respawn(&mut self, config: &Config) {
