@@ -76,7 +76,8 @@ pub fn render(
         Output::Png(path) => {
             // One frame: nothing to reuse, so no motion cells to note.
             world.show_at(start);
-            export::write_png(path, &pool.install(|| trace::render(world.scene())))?;
+            let img = traced_with_progress(&pool, world.scene());
+            export::write_png(path, &img)?;
             written.push(path.clone());
         }
         Output::Sequence {
@@ -118,6 +119,33 @@ pub fn render(
         }
     }
     Ok(written)
+}
+
+/// One frame of `scene` traced on `pool`, its rows counted on a bar on a
+/// terminal and, where it will take over 10 s (8K at 64 samples), in the log.
+fn traced_with_progress(pool: &rayon::ThreadPool, scene: &trace::Scene) -> Image {
+    use std::sync::atomic::{AtomicU32, Ordering};
+    let passes = if scene.adaptive.is_some() && scene.samples > 1 {
+        2
+    } else {
+        1
+    };
+    let rows = passes * scene.size.1;
+    let done = AtomicU32::new(0);
+    let bar = crate::bench::progress_bar(u64::from(rows), "rows");
+    let mut estimate = crate::bench::Estimate::new("tracing the frame");
+    let img = std::thread::scope(|s| {
+        let tracing = s.spawn(|| pool.install(|| trace::render_counting(scene, &done)));
+        while !tracing.is_finished() {
+            std::thread::sleep(std::time::Duration::from_millis(200));
+            let n = done.load(Ordering::Relaxed);
+            bar.set_position(u64::from(n));
+            estimate.done(f64::from(n) / f64::from(rows.max(1)));
+        }
+        tracing.join().expect("the tracer does not panic")
+    });
+    bar.finish_and_clear();
+    img
 }
 
 /// Works out the swing up to the start time `start` (s), with a bar on a

@@ -28,6 +28,46 @@ pub fn progress_bar(total: u64, unit: &str) -> indicatif::ProgressBar {
     indicatif::ProgressBar::new(total).with_style(style)
 }
 
+/// Says once, in the log, how long a piece of work will take, when that is
+/// over 10 s: from the share of it done, once 2 s have passed (so that the
+/// estimate has something to go on). Beside a progress bar, for the logs
+/// that have no terminal.
+#[derive(Debug)]
+pub struct Estimate {
+    what: String,
+    start: std::time::Instant,
+    said: bool,
+}
+
+impl Estimate {
+    /// An estimate of `what` (e.g. "bench rocking"), from now.
+    #[must_use]
+    pub fn new(what: impl Into<String>) -> Self {
+        Self {
+            what: what.into(),
+            start: std::time::Instant::now(),
+            said: false,
+        }
+    }
+
+    /// `done` (0..=1) of the work is done.
+    pub fn done(&mut self, done: f64) {
+        let spent = self.start.elapsed().as_secs_f64();
+        if self.said || spent < 2.0 || done <= 0.0 {
+            return;
+        }
+        let left = spent * (1.0 / done - 1.0);
+        if left > 10.0 {
+            self.said = true;
+            tracing::info!(
+                "{}: {spent:.0} s so far, about {:.0} s more",
+                self.what,
+                left.min(1e9)
+            );
+        }
+    }
+}
+
 /// Median of a non-empty list.
 #[must_use]
 pub fn median(mut xs: Vec<f64>) -> f64 {

@@ -73,9 +73,16 @@ pub fn run(config: &Config, duration: f64) -> Rocking {
     let mut amplitudes = Vec::new();
     let mut reach: std::collections::VecDeque<Vec<f64>> = std::collections::VecDeque::new();
     let mut s = cradle.snapshot(0.0);
+    // A long row takes minutes: a bar on a terminal, an estimate in the log.
+    let bar = super::progress_bar(duration.ceil() as u64, "s simulated");
+    let mut estimate = super::Estimate::new("bench rocking");
     for n in 0..=samples {
         let t = n as f64 / RATE;
         s = cradle.snapshot(t);
+        if n % RATE as u64 == 0 {
+            bar.set_position(t as u64);
+            estimate.done(t / duration);
+        }
         let (lo, hi) = s
             .theta
             .iter()
@@ -109,6 +116,7 @@ pub fn run(config: &Config, duration: f64) -> Rocking {
             amplitudes.push((t, most));
         }
     }
+    bar.finish_and_clear();
     let cpu_seconds = super::thread_cpu_seconds() - cpu;
     Rocking {
         duration,

@@ -17,6 +17,7 @@ use super::supersample::Supersamples;
 use super::tiles::Tiles;
 use glam::Vec3;
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicU32, Ordering};
 
 /// Which work-skipping the renderer may use. Each leaves the picture byte for byte
 /// as the full render makes it (tested); turning them off gives that reference.
@@ -264,6 +265,21 @@ impl<'a> Frame<'a> {
     /// with each row's motion cells and segments (adaptive: cells only, as such
     /// frames are never reused).
     pub(crate) fn image(&self, parallel: bool) -> (Image, Vec<RowMotion>) {
+        self.image_counting(parallel, None)
+    }
+
+    /// [`Self::image`], adding 1 to `rows_done` as each row of each pass is
+    /// done (with adaptive anti-aliasing, two passes: `2 * height` in all).
+    pub(crate) fn image_counting(
+        &self,
+        parallel: bool,
+        rows_done: Option<&AtomicU32>,
+    ) -> (Image, Vec<RowMotion>) {
+        let count = || {
+            if let Some(c) = rows_done {
+                c.fetch_add(1, Ordering::Relaxed);
+            }
+        };
         let mut img = Image {
             width: self.width,
             height: self.height,
@@ -271,14 +287,18 @@ impl<'a> Frame<'a> {
         };
         let Some(edge) = self.edge else {
             let rows = for_rows(&mut img, parallel, |y, row| {
-                self.row_with(y, row, &self.offsets, None)
+                let motion = self.row_with(y, row, &self.offsets, None);
+                count();
+                motion
             });
             return (img, rows);
         };
         let (mut rows, lin): (Vec<RowMotion>, Vec<Vec<Vec3>>) =
             for_rows(&mut img, parallel, |y, row| {
                 let mut lin = vec![Vec3::ZERO; self.width as usize];
-                (self.row_with(y, row, &[(0.5, 0.5)], Some(&mut lin)), lin)
+                let motion = self.row_with(y, row, &[(0.5, 0.5)], Some(&mut lin));
+                count();
+                (motion, lin)
             })
             .into_iter()
             .unzip();
@@ -295,6 +315,7 @@ impl<'a> Frame<'a> {
                 row[x * 4..x * 4 + 4].copy_from_slice(&bytes);
                 cells[x] = c;
             }
+            count();
             cells
         });
         for (m, e) in rows.iter_mut().zip(edges) {
@@ -347,6 +368,17 @@ pub fn render_serial_with(scene: &Scene, options: RenderOptions) -> Image {
 #[must_use]
 pub fn render(scene: &Scene) -> Image {
     Frame::new(scene, RenderOptions::FAST, false).image(true).0
+}
+
+/// [`render`], adding 1 to `rows_done` as each row of each pass is done, so
+/// another thread can show a long frame's progress: `height` rows in all, or
+/// `2 * height` with adaptive anti-aliasing (a pass of centre samples, then
+/// the edges). The same picture, byte for byte.
+#[must_use]
+pub fn render_counting(scene: &Scene, rows_done: &AtomicU32) -> Image {
+    Frame::new(scene, RenderOptions::FAST, false)
+        .image_counting(true, Some(rows_done))
+        .0
 }
 
 /// A rayon pool of `threads` workers (0: one per core).

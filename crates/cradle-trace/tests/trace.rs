@@ -313,3 +313,50 @@ fn floor_i64_is_floor_as_i64_for_every_kind_of_value() {
         assert_eq!(floor_i64(v), v.floor() as i64, "{v}");
     }
 }
+
+#[test]
+fn a_counted_render_is_the_same_picture_and_counts_every_row_of_each_pass() {
+    use std::sync::atomic::{AtomicU32, Ordering};
+    let object = |shape| Object {
+        shape,
+        material: Material {
+            color: Vec3::splat(0.6),
+            specular: Some(50.0),
+            reflective: 0.5,
+            checker: None,
+        },
+        moving: false,
+    };
+    let mut scene = Scene {
+        objects: vec![
+            object(Shape::Plane {
+                point: Vec3::ZERO,
+                normal: Vec3::Y,
+            }),
+            object(Shape::Sphere {
+                centre: Vec3::new(0.0, 0.1, 0.0),
+                radius: 0.05,
+            }),
+        ],
+        lights: vec![Light::Point {
+            position: Vec3::new(0.3, 1.0, 0.5),
+            color: Vec3::ONE,
+        }],
+        camera: Camera {
+            position: Vec3::new(0.0, 0.2, 0.5),
+            look_at: Vec3::new(0.0, 0.1, 0.0),
+            fov_deg: 40.0,
+        },
+        size: (48, 24),
+        ..Scene::default()
+    };
+    // One pass without anti-aliasing; two (centres, then edges) with it.
+    for (samples, adaptive, passes) in [(1, None, 1), (4, Some(0.1), 2)] {
+        scene.samples = samples;
+        scene.adaptive = adaptive;
+        let done = AtomicU32::new(0);
+        let counted = trace::render_counting(&scene, &done);
+        assert!(counted.rgba == trace::render(&scene).rgba, "the same bytes");
+        assert_eq!(done.load(Ordering::Relaxed), passes * 24);
+    }
+}
