@@ -90,17 +90,24 @@ impl Controls {
                 .collect::<Vec<_>>()
                 .join("\n")
         })?;
-        let mut swing = config.clone();
-        swing.render.samples = c.render.samples;
-        swing.render.adaptive = c.render.adaptive;
         Ok(if c == *config {
             Apply::Same
-        } else if c == swing {
+        } else if absorbed(config, &c) {
             Apply::Live(c)
         } else {
             Apply::Restart(c)
         })
     }
+}
+
+/// Whether going from `from` to `to` is a change the running swing absorbs:
+/// they differ in anti-aliasing at most.
+#[must_use]
+pub fn absorbed(from: &Config, to: &Config) -> bool {
+    let mut swing = from.clone();
+    swing.render.samples = to.render.samples;
+    swing.render.adaptive = to.render.adaptive;
+    swing == *to
 }
 
 /// Changes within this long of the one before are one step of the history:

@@ -151,7 +151,8 @@ impl ApplicationHandler<UserEvent> for App {
                     Effect::Quit => event_loop.exit(),
                 }
                 if let Some(surface) = &mut self.surface {
-                    if !self.session.panel_open() {
+                    // A hidden panel's fields let go of the keyboard.
+                    if action == keys::Action::Panel && !self.session.panel_open() {
                         surface.close_panel();
                     }
                     surface.request_redraw();

@@ -435,10 +435,7 @@ impl Session {
         };
         self.rate = rate;
         self.asset = asset;
-        let mut live = self.config.clone();
-        live.render.samples = config.render.samples;
-        live.render.adaptive = config.render.adaptive;
-        let restart = live != config;
+        let restart = !super::controls::absorbed(&self.config, &config);
         self.config = config;
         self.error = None;
         if restart {
