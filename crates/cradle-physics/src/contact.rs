@@ -189,6 +189,8 @@ pub struct Outcome {
     pub resting: Vec<Option<bool>>,
     /// Impacts (resting contacts excluded).
     pub impacts: u64,
+    /// Each impact in the order resolved: the pair and how fast it closed (m/s).
+    pub hits: Vec<(usize, f64)>,
 }
 
 /// Resolves impact `first` (between balls `first` and `first + 1`), then every
@@ -207,10 +209,15 @@ pub fn resolve(
         kicked: vec![false; n],
         resting: vec![None; n.saturating_sub(1)],
         impacts: 0,
+        hits: Vec::new(),
     };
     let hit = |a: usize, theta: &mut [f64], omega: &mut [f64], out: &mut Outcome| {
+        let vn = closing_speed(p, (theta[a], omega[a]), (theta[a + 1], omega[a + 1]));
         let (balls, counted) = impact(p, r, theta, omega, a);
         out.impacts += u64::from(counted);
+        if counted {
+            out.hits.push((a, -vn));
+        }
         out.resting[a] = Some(!counted);
         for i in balls {
             out.changed[i] = true;

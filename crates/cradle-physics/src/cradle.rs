@@ -4,6 +4,7 @@
 use super::contact::Resolution;
 use super::damped::DampedEngine;
 use super::exact::ExactEngine;
+use super::impacts::{Impact, ImpactLog};
 use super::params::{CradleParams, Integrator, REST_FRACTION, lifted_start};
 use super::stepped::SteppedEngine;
 
@@ -128,6 +129,27 @@ impl Cradle {
             Engine::Stepped(e) => e.advance_until(t, Some(deadline)),
         };
         self.snapshot(reached.max(self.last).min(t))
+    }
+
+    /// Keeps the impacts found from now on, for [`Self::take_impacts`]: the sound
+    /// reads them. Off by default, so that a run that never takes them keeps none.
+    pub fn record_impacts(&mut self) {
+        self.log().record();
+    }
+
+    /// The impacts up to time `t` (s) found by the snapshots so far, earliest
+    /// first, each handed out once. A Hertz contact is handed out once it has
+    /// ended, so one still going on at `t` comes with a later call.
+    pub fn take_impacts(&mut self, t: f64) -> Vec<Impact> {
+        self.log().take_until(t)
+    }
+
+    fn log(&mut self) -> &mut ImpactLog {
+        match &mut self.engine {
+            Engine::Exact(e) => e.impacts(),
+            Engine::Damped(e) => e.impacts(),
+            Engine::Stepped(e) => e.impacts(),
+        }
     }
 
     /// The physical parameters.

@@ -11,6 +11,7 @@
 
 use super::dopri;
 use super::hertz::TOL;
+use super::impacts::{ImpactLog, Watch};
 use super::params::CradleParams;
 use super::row::Row;
 
@@ -32,6 +33,9 @@ pub struct DampedEngine {
     contacts: u64,
     /// No step could be taken (round-off ate the step): the state stays put.
     stuck: bool,
+    /// The contacts found and not yet taken; those still open.
+    impacts: ImpactLog,
+    watch: Watch,
 }
 
 impl DampedEngine {
@@ -66,6 +70,8 @@ impl DampedEngine {
             touching,
             contacts: 0,
             stuck: false,
+            impacts: ImpactLog::default(),
+            watch: Watch::new(n.saturating_sub(1)),
         }
     }
 
@@ -171,8 +177,16 @@ impl DampedEngine {
                 self.contacts += u64::from(now && !*was);
                 *was = now;
             }
+            let state = (&self.y[..n], &self.y[n..2 * n]);
+            self.watch
+                .step(&params, self.k, self.t, state, &mut self.impacts);
         }
         t
+    }
+
+    /// The contacts found so far, for the ones who read them.
+    pub fn impacts(&mut self) -> &mut ImpactLog {
+        &mut self.impacts
     }
 
     /// The state at `t`: one shortened step from the last step point.

@@ -23,6 +23,7 @@
 use super::contact::{self, Resolution};
 use super::flight::Flight;
 use super::hertz::{self, PhaseEnd};
+use super::impacts::{Impact, ImpactLog, Watch};
 use super::params::CradleParams;
 use super::roots::{falling_root, rising_root};
 
@@ -72,6 +73,9 @@ pub struct ExactEngine {
     /// Energy lost in viscoelastic contacts by the end of the latest phase (J);
     /// the second entry (drag) stays 0 here.
     lost: [f64; 2],
+    /// The impacts found and not yet taken; the Hertz contacts still open.
+    impacts: ImpactLog,
+    watch: Watch,
 }
 
 /// A Hertz contact phase: where it started and how it ended.
@@ -111,6 +115,8 @@ impl ExactEngine {
             start: (theta.to_vec(), omega.to_vec()),
             phase: None,
             lost: [0.0; 2],
+            impacts: ImpactLog::default(),
+            watch: Watch::new(theta.len().saturating_sub(1)),
         };
         // Balls that start touching and approaching (none in a lifted start) are
         // resolved before anything flies.
@@ -267,7 +273,18 @@ impl ExactEngine {
     /// balls came apart, every ball flies on from its end.
     fn run_segment(&mut self, t0: f64, theta: Vec<f64>, omega: Vec<f64>) {
         let k = self.params.hertz.unwrap_or(0.0);
-        let end = hertz::run_phase(&self.params, k, t0, &theta, &omega, f64::INFINITY);
+        let report = hertz::Report {
+            watch: &mut self.watch,
+            log: &mut self.impacts,
+            epoch: self.epoch,
+        };
+        let end = hertz::run_reported(
+            &self.params,
+            k,
+            (t0, &theta, &omega),
+            f64::INFINITY,
+            Some(report),
+        );
         self.collisions += end.contacts;
         let lost_before = self.lost;
         self.lost = [lost_before[0] + end.lost[0], lost_before[1] + end.lost[1]];
@@ -377,7 +394,13 @@ impl ExactEngine {
             self.run_segment(te, th, om);
             return;
         }
+        let before = th.clone();
         let out = contact::resolve(&self.params, &self.resolution, &mut th, &mut om, a);
+        for &(pair, speed) in &out.hits {
+            let at = self.epoch + te;
+            self.impacts
+                .push(Impact::between(&self.params, at, pair, &before, speed));
+        }
         self.collisions += out.impacts;
         self.events += 1;
         self.t_event = te;
@@ -419,6 +442,11 @@ impl ExactEngine {
         }
         let (theta, omega) = self.state_now(t);
         (theta, omega, self.lost)
+    }
+
+    /// The impacts found so far, for the ones who read them.
+    pub fn impacts(&mut self) -> &mut ImpactLog {
+        &mut self.impacts
     }
 
     /// Impacts so far (pairwise impulses; resting contacts excluded).

@@ -16,6 +16,7 @@
 
 use super::contact;
 use super::dopri;
+use super::impacts::{ImpactLog, Watch};
 use super::params::CradleParams;
 use super::row::Row;
 
@@ -66,6 +67,14 @@ pub struct PhaseEnd {
     pub lost: [f64; 2],
 }
 
+/// Where a phase reports its contacts: the watch that follows them across
+/// segments, the log they go to, and the time the phase's times count from (s).
+pub(crate) struct Report<'a> {
+    pub(crate) watch: &'a mut Watch,
+    pub(crate) log: &'a mut ImpactLog,
+    pub(crate) epoch: f64,
+}
+
 /// Integrates a contact phase from `(theta, omega)` at `t0` until the balls come
 /// apart, the step count reaches a segment, or `stop` (s) is reached; at `stop`
 /// the state is one shortened step from the last step point, and the step
@@ -80,6 +89,18 @@ pub fn run_phase(
     theta: &[f64],
     omega: &[f64],
     stop: f64,
+) -> PhaseEnd {
+    run_reported(p, k, (t0, theta, omega), stop, None)
+}
+
+/// [`run_phase`], and with a `report` each contact that ends in the phase goes
+/// to its log (the steps are the same either way).
+pub(crate) fn run_reported(
+    p: &CradleParams,
+    k: f64,
+    (t0, theta, omega): (f64, &[f64], &[f64]),
+    stop: f64,
+    mut report: Option<Report<'_>>,
 ) -> PhaseEnd {
     let n = theta.len();
     let sys = Row::new(p, k, n);
@@ -113,6 +134,9 @@ pub fn run_phase(
         lost: sys.lost(y),
     };
     let deriv = |y: &[f64], out: &mut [f64]| sys.deriv(y, out);
+    if let Some(r) = report.as_mut() {
+        r.watch.begin(p, r.epoch + t0, theta, omega);
+    }
     let mut steps = 0;
     loop {
         let (y1, err) = dopri::step(&deriv, &y, h, &scale, &mut k_buf);
@@ -148,6 +172,10 @@ pub fn run_phase(
         t += h;
         y = y1;
         steps += 1;
+        if let Some(r) = report.as_mut() {
+            r.watch
+                .step(p, k, r.epoch + t, (&y[..n], &y[n..2 * n]), r.log);
+        }
         for (a, was) in touching.iter_mut().enumerate() {
             let now = overlapping(&y, a);
             contacts += u64::from(now && !*was);

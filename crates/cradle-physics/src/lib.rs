@@ -8,7 +8,7 @@
 //! replaces the instantaneous impacts when asked for, elastic or viscoelastic
 //! (`row`); with air drag the damped engine (`damped`) integrates the whole motion. Fixed-step integrators
 //! (`stepped`) with the same impacts exist for comparison. `cradle` puts them
-//! behind one type.
+//! behind one type; each engine reports its impacts (`impacts`) for the sound.
 
 #![forbid(unsafe_code)]
 
@@ -20,6 +20,7 @@ pub mod elliptic;
 pub mod exact;
 pub mod flight;
 pub mod hertz;
+pub mod impacts;
 pub mod params;
 pub mod roots;
 mod row;
@@ -27,4 +28,5 @@ pub mod stepped;
 
 pub use cradle::{Cradle, Snapshot};
 pub use flight::{Flight, period_ratio};
+pub use impacts::{Contact, Impact};
 pub use params::{CradleParams, Integrator};

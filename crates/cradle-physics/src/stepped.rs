@@ -9,6 +9,7 @@
 
 use super::contact::{self, Resolution};
 use super::hertz;
+use super::impacts::{Impact, ImpactLog, Watch};
 use super::params::{CradleParams, Integrator};
 
 /// Bisection steps locating an impact inside a step: 2^-52 of a step.
@@ -27,6 +28,18 @@ pub struct SteppedEngine {
     theta: Vec<f64>,
     omega: Vec<f64>,
     collisions: u64,
+    /// The impacts found on the committed grid and not yet taken; the Hertz
+    /// contacts still open.
+    impacts: ImpactLog,
+    watch: Watch,
+}
+
+/// Where the committed steps report their impacts: the log, the Hertz watch,
+/// and the time the step being taken starts at (s).
+struct Found<'a> {
+    log: &'a mut ImpactLog,
+    watch: &'a mut Watch,
+    t: f64,
 }
 
 impl SteppedEngine {
@@ -50,6 +63,8 @@ impl SteppedEngine {
             theta: theta.to_vec(),
             omega: omega.to_vec(),
             collisions: 0,
+            impacts: ImpactLog::default(),
+            watch: Watch::new(theta.len().saturating_sub(1)),
         }
     }
 
@@ -106,9 +121,20 @@ impl SteppedEngine {
     /// With Hertz contact: runs the contact phase from `(theta, omega)` for at most
     /// `h` (s). Returns the time it took (all of `h` if the balls are still in
     /// contact) and the contacts in it.
-    fn hertz_phase(&self, theta: &mut Vec<f64>, omega: &mut Vec<f64>, h: f64) -> (f64, u64) {
+    fn hertz_phase(
+        &self,
+        theta: &mut Vec<f64>,
+        omega: &mut Vec<f64>,
+        h: f64,
+        found: Option<&mut Found<'_>>,
+    ) -> (f64, u64) {
         let k = self.params.hertz.unwrap_or(0.0);
-        let end = hertz::run_phase(&self.params, k, 0.0, theta, omega, h);
+        let report = found.map(|f| hertz::Report {
+            watch: f.watch,
+            log: f.log,
+            epoch: f.t,
+        });
+        let end = hertz::run_reported(&self.params, k, (0.0, theta, omega), h, report);
         *theta = end.theta;
         *omega = end.omega;
         (if end.separated { end.t } else { h }, end.contacts)
@@ -121,14 +147,24 @@ impl SteppedEngine {
             .any(|w| contact::gap_fn(&self.params, w[0], w[1]) < 0.0)
     }
 
-    /// Advances `(theta, omega)` by `h`, resolving impacts inside; returns impacts.
-    fn advance(&self, theta: &mut Vec<f64>, omega: &mut Vec<f64>, mut h: f64) -> u64 {
+    /// Advances `(theta, omega)` by `h`, resolving impacts inside; returns
+    /// impacts. A committed step reports them to `found`.
+    fn advance(
+        &self,
+        theta: &mut Vec<f64>,
+        omega: &mut Vec<f64>,
+        mut h: f64,
+        mut found: Option<Found<'_>>,
+    ) -> u64 {
         let mut impacts = 0;
         if self.params.hertz.is_some() && self.overlapping(theta) {
             // A contact carried over from the last step.
-            let (took, n) = self.hertz_phase(theta, omega, h);
+            let (took, n) = self.hertz_phase(theta, omega, h, found.as_mut());
             impacts += n;
             h -= took;
+            if let Some(f) = found.as_mut() {
+                f.t += took;
+            }
             if h <= 0.0 {
                 return impacts;
             }
@@ -159,19 +195,32 @@ impl SteppedEngine {
                 }
             }
             let (mut tc, mut wc) = self.step_all(theta, omega, hi * h);
+            if let Some(f) = found.as_mut() {
+                f.t += hi * h;
+            }
             if self.params.hertz.is_some() {
-                let (took, n) = self.hertz_phase(&mut tc, &mut wc, h * (1.0 - hi));
+                let (took, n) = self.hertz_phase(&mut tc, &mut wc, h * (1.0 - hi), found.as_mut());
                 impacts += n;
                 *theta = tc;
                 *omega = wc;
                 h = h * (1.0 - hi) - took;
+                if let Some(f) = found.as_mut() {
+                    f.t += took;
+                }
                 if h <= 0.0 {
                     return impacts;
                 }
                 continue;
             }
-            impacts +=
-                contact::resolve(&self.params, &self.resolution, &mut tc, &mut wc, first).impacts;
+            let before = tc.clone();
+            let out = contact::resolve(&self.params, &self.resolution, &mut tc, &mut wc, first);
+            impacts += out.impacts;
+            if let Some(f) = found.as_mut() {
+                for &(pair, speed) in &out.hits {
+                    let impact = Impact::between(&self.params, f.t, pair, &before, speed);
+                    f.log.push(impact);
+                }
+            }
             *theta = tc;
             *omega = wc;
             h *= 1.0 - hi;
@@ -201,7 +250,17 @@ impl SteppedEngine {
                 std::mem::take(&mut self.theta),
                 std::mem::take(&mut self.omega),
             );
-            self.collisions += self.advance(&mut th, &mut om, self.dt);
+            let (mut log, mut watch) = (
+                std::mem::take(&mut self.impacts),
+                std::mem::take(&mut self.watch),
+            );
+            let found = Found {
+                log: &mut log,
+                watch: &mut watch,
+                t: self.steps as f64 * self.dt,
+            };
+            self.collisions += self.advance(&mut th, &mut om, self.dt, Some(found));
+            (self.impacts, self.watch) = (log, watch);
             self.theta = th;
             self.omega = om;
             self.steps += 1;
@@ -214,9 +273,14 @@ impl SteppedEngine {
         let rest = t - self.steps as f64 * self.dt;
         let (mut th, mut om) = (self.theta.clone(), self.omega.clone());
         if rest > 0.0 {
-            self.advance(&mut th, &mut om, rest);
+            self.advance(&mut th, &mut om, rest, None);
         }
         (th, om)
+    }
+
+    /// The impacts found on the committed grid, for the ones who read them.
+    pub fn impacts(&mut self) -> &mut ImpactLog {
+        &mut self.impacts
     }
 
     /// Impacts so far on the committed grid.
