@@ -1,4 +1,5 @@
-//! Writing pictures: PNG frames, animated GIFs and SVG plots, each under a
+//! Writing pictures and sound: PNG frames, animated GIFs, SVG plots and WAV
+//! soundtracks, each under a
 //! temporary name in its folder and renamed into place only when complete, so
 //! that no file is ever half-written (a failed write, a full disk or Ctrl-C leaves
 //! the old file, or none). [`check_output`] refuses, before any work, a path that
@@ -6,7 +7,7 @@
 
 use crate::trace::Image;
 use std::fs::File;
-use std::io::{BufWriter, Read, Write};
+use std::io::{BufWriter, Read, Seek, Write};
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 
@@ -70,6 +71,8 @@ pub enum Kind {
     Gif,
     /// An SVG plot.
     Svg,
+    /// A WAV soundtrack.
+    Wav,
 }
 
 impl Kind {
@@ -78,6 +81,7 @@ impl Kind {
             Self::Png => "png",
             Self::Gif => "gif",
             Self::Svg => "svg",
+            Self::Wav => "wav",
         }
     }
 
@@ -91,6 +95,7 @@ impl Kind {
                 let t = text.trim_start();
                 t.starts_with("<svg") || t.starts_with("<?xml")
             }
+            Self::Wav => head.starts_with(b"RIFF") && head.get(8..12) == Some(b"WAVE"),
         }
     }
 }
@@ -242,6 +247,12 @@ impl Write for AtomicFile {
     }
 }
 
+impl Seek for AtomicFile {
+    fn seek(&mut self, pos: std::io::SeekFrom) -> std::io::Result<u64> {
+        self.out.as_mut().expect("taken only by commit").seek(pos)
+    }
+}
+
 impl Drop for AtomicFile {
     fn drop(&mut self) {
         if self.out.is_some() {
@@ -282,6 +293,44 @@ pub fn write_png(path: &Path, img: &Image) -> Result<(), WriteError> {
             .map_err(|e| fail(path, e))?;
         writer.finish().map_err(|e| fail(path, e))?;
     }
+    f.commit()
+}
+
+/// Writes a 16-bit stereo WAV of `frames` frames at `rate` Hz, atomically,
+/// asking `chunk` for interleaved left/right samples (-1..=1) a second at a
+/// time from frame `first` on: a long soundtrack never sits whole in memory.
+///
+/// # Errors
+/// When the file cannot be created or written.
+pub fn write_wav(
+    path: &Path,
+    rate: u32,
+    frames: u64,
+    mut chunk: impl FnMut(u64, &mut [f32]),
+) -> Result<(), WriteError> {
+    create_folder(path)?;
+    let spec = hound::WavSpec {
+        channels: 2,
+        sample_rate: rate,
+        bits_per_sample: 16,
+        sample_format: hound::SampleFormat::Int,
+    };
+    let mut f = AtomicFile::create(path)?;
+    let mut wav = hound::WavWriter::new(&mut f, spec).map_err(|e| fail(path, e))?;
+    let mut buf = Vec::new();
+    let mut first = 0;
+    while first < frames {
+        let n = (frames - first).min(u64::from(rate));
+        buf.clear();
+        buf.resize(2 * n as usize, 0.0);
+        chunk(first, &mut buf);
+        for v in &buf {
+            wav.write_sample(crate::sound::synth::pcm(*v))
+                .map_err(|e| fail(path, e))?;
+        }
+        first += n;
+    }
+    wav.finalize().map_err(|e| fail(path, e))?;
     f.commit()
 }
 

@@ -1,9 +1,11 @@
 //! `newtons-cradle render`: frames of the swinging cradle without a window, as a
-//! PNG, a numbered PNG sequence, or an animated GIF.
+//! PNG, a numbered PNG sequence, or an animated GIF, and with `--audio` the
+//! frames' soundtrack (`sound::track`) from the impacts each frame reports.
 
 use crate::config::Config;
 use crate::export::{self, GifWriter, Kind, WriteError};
 use crate::scene::CradleWorld;
+use crate::sound::track::Soundtrack;
 use crate::trace::{self, Image};
 use std::path::{Path, PathBuf};
 
@@ -51,8 +53,30 @@ fn frame_path(dir: &Path, n: u32) -> PathBuf {
     dir.join(format!("frame_{n:04}.png"))
 }
 
+impl Output {
+    /// The soundtrack of this output's frames from simulated time `start` (s):
+    /// from the first frame's time for as long as the frames last; `None` for
+    /// one picture.
+    fn soundtrack(&self, config: &Config, start: f64) -> Option<Soundtrack> {
+        match self {
+            Self::Png(_) => None,
+            Self::Sequence {
+                first, frames, fps, ..
+            } => Some(Soundtrack::new(
+                config,
+                start + f64::from(*first) / fps,
+                f64::from(*frames) / fps,
+            )),
+            Self::Gif { frames, fps, .. } => {
+                Some(Soundtrack::new(config, start, f64::from(*frames) / fps))
+            }
+        }
+    }
+}
+
 /// Renders the cradle of `config` starting at simulated time `start` (s) on a
-/// pool of `config.render.threads` threads. Returns the files written.
+/// pool of `config.render.threads` threads, with the frames' soundtrack in
+/// `audio` if given. Returns the files written.
 ///
 /// # Errors
 /// An output path that cannot be written.
@@ -60,15 +84,20 @@ pub fn render(
     config: &Config,
     start: f64,
     output: &Output,
+    audio: Option<&Path>,
     input: Option<&Path>,
 ) -> anyhow::Result<Vec<PathBuf>> {
     let pool = trace::pool(config.render.threads)?;
     let mut world = CradleWorld::new(config);
     reach(&mut world, start);
+    let mut track = audio.and_then(|_| output.soundtrack(config, start));
     // Frames after the first re-trace only what the swing can change.
     let mut inc = trace::Incremental::new();
-    let mut frame_at = |t: f64| -> Image {
+    let mut frame_at = |t: f64, track: &mut Option<Soundtrack>| -> Image {
         world.show_at(t);
+        if let Some(track) = track {
+            track.hear(world.impacts(), world.scene());
+        }
         pool.install(|| inc.render(world.scene()).clone())
     };
     let mut written = Vec::new();
@@ -95,7 +124,9 @@ pub fn render(
                 // changed under a running sequence (its folder removed, a file
                 // put in its way) is a failure of the run (exit 1), not bad input.
                 export::check_output(&path, Kind::Png, input)
-                    .and_then(|()| export::write_png(&path, &frame_at(start + f64::from(n) / fps)))
+                    .and_then(|()| {
+                        export::write_png(&path, &frame_at(start + f64::from(n) / fps, &mut track))
+                    })
                     .map_err(|e| WriteError {
                         bad_path: false,
                         ..e
@@ -110,13 +141,32 @@ pub fn render(
             let mut gif = GifWriter::create(path, w, h, *fps)?;
             let progress = crate::bench::progress_bar(u64::from(*frames), "frames");
             for n in 0..*frames {
-                gif.push(&frame_at(start + f64::from(n) / fps))?;
+                gif.push(&frame_at(start + f64::from(n) / fps, &mut track))?;
                 progress.inc(1);
             }
             progress.finish_and_clear();
             gif.finish()?;
             written.push(path.clone());
         }
+    }
+    if let (Some(mut track), Some(path)) = (track, audio) {
+        // The impacts after the last frame, to the track's end: a contact
+        // starting just before it ends within a millisecond.
+        world.show_at(track.end() + 1e-3);
+        track.hear(world.impacts(), world.scene());
+        // As the frames: checked again, and a failure now is the run's (exit 1).
+        export::check_output(path, Kind::Wav, input)
+            .and_then(|()| track.write(path))
+            .map_err(|e| WriteError {
+                bad_path: false,
+                ..e
+            })?;
+        tracing::info!(
+            "soundtrack: {} clicks over {:.3} s",
+            track.clicks().len(),
+            track.end() - track.start()
+        );
+        written.push(path.to_path_buf());
     }
     Ok(written)
 }
@@ -182,6 +232,7 @@ pub fn run(
     config: &Config,
     start: f64,
     output: &Output,
+    audio: Option<&Path>,
     input: Option<&Path>,
 ) -> anyhow::Result<()> {
     tracing::info!(
@@ -191,7 +242,7 @@ pub fn run(
         config.render.height
     );
     let clock = std::time::Instant::now();
-    let files = render(config, start, output, input)?;
+    let files = render(config, start, output, audio, input)?;
     tracing::info!(
         "wrote {} file(s) in {:.2} s",
         files.len(),

@@ -26,4 +26,5 @@ pub mod headless;
 pub use cradle_physics as physics;
 pub mod scene;
 pub mod simulate;
+pub mod sound;
 pub use cradle_trace as trace;

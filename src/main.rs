@@ -85,16 +85,18 @@ fn run(job: Job) -> Result<(), Failure> {
             config,
             duration,
             every,
+            impacts,
         } => {
             let mut out = io::BufWriter::new(out);
-            simulate::simulate(&config, duration, every, &mut out)?;
+            simulate::simulate(&config, duration, every, impacts, &mut out)?;
         }
         Job::Render {
             config,
             time,
             output,
+            audio,
             input,
-        } => headless::run(&config, time, &output, input.as_deref())?,
+        } => headless::run(&config, time, &output, audio.as_deref(), input.as_deref())?,
         Job::BenchRender {
             config,
             threads,

@@ -71,11 +71,47 @@ struct Sample<'a> {
     lost: Option<[f64; 2]>,
 }
 
-/// The first and last lines: `{"params":{..}}` and `{"summary":{..}}`.
+/// One impact, with `--impacts`.
+#[derive(Debug, Serialize)]
+struct ImpactLine {
+    /// When the balls met (s).
+    t: f64,
+    /// The two balls (from 0, left to right).
+    balls: [usize; 2],
+    /// How fast they approached along the line of centres (m/s).
+    speed: f64,
+    /// The contact point (m): along the row from the first pivot, and up from
+    /// the pivots.
+    x: f64,
+    y: f64,
+    /// Hertz contact: how long the pair touched (s) and its peak force (N).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    contact_s: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    peak_force: Option<f64>,
+}
+
+impl From<&crate::physics::Impact> for ImpactLine {
+    fn from(i: &crate::physics::Impact) -> Self {
+        Self {
+            t: i.t,
+            balls: [i.pair, i.pair + 1],
+            speed: i.speed,
+            x: i.at.0,
+            y: i.at.1,
+            contact_s: i.contact.map(|c| c.duration),
+            peak_force: i.contact.map(|c| c.peak_force),
+        }
+    }
+}
+
+/// The first and last lines: `{"params":{..}}` and `{"summary":{..}}`; with
+/// `--impacts`, `{"impact":{..}}` lines between the samples.
 #[derive(Debug, Serialize)]
 #[serde(rename_all = "lowercase")]
 enum Framing<'a> {
     Params(Params<'a>),
+    Impact(ImpactLine),
     Summary(&'a Summary),
 }
 
@@ -148,7 +184,9 @@ pub fn sample_count(duration: f64, every: f64) -> u64 {
     (duration / every * (1.0 + 1e-9)).floor() as u64
 }
 
-/// Runs the simulation, writing JSON Lines to `out`.
+/// Runs the simulation, writing JSON Lines to `out`; with `impacts`, each
+/// impact too, before the first sample at or after it (a Hertz contact once
+/// it has ended).
 ///
 /// # Errors
 /// When writing to `out` fails.
@@ -156,6 +194,7 @@ pub fn simulate(
     config: &Config,
     duration: f64,
     every: f64,
+    impacts: bool,
     out: &mut impl Write,
 ) -> io::Result<Summary> {
     let start = Instant::now();
@@ -181,6 +220,9 @@ pub fn simulate(
     };
     line(out, &Framing::Params(params))?;
     let mut cradle = config.build_cradle();
+    if impacts {
+        cradle.record_impacts();
+    }
     let e0 = cradle.initial_energy();
     let (mut max_err, mut e_last, mut collisions) = (0.0_f64, e0, 0);
     let mut lost = [0.0; 2];
@@ -200,6 +242,9 @@ pub fn simulate(
             feedback.after(s.t, out)?;
         };
         bar.set_position(t as u64);
+        for i in &cradle.take_impacts(t) {
+            line(out, &Framing::Impact(i.into()))?;
+        }
         let e = cradle.energy(&s);
         if !(e.is_finite() && s.theta.iter().chain(&s.omega).all(|x| x.is_finite())) {
             // Never a null in the JSON: stop, and say where.

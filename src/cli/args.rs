@@ -81,6 +81,10 @@ pub struct RenderArgs {
     /// K), so that a long sequence splits across processes, 0..=10000000.
     #[arg(value_parser = whole("0..=10000000"), long, allow_negative_numbers = true, value_name = "K")]
     pub first: Option<i64>,
+    /// With a sequence or a GIF: also write its soundtrack here (48 kHz, 16-bit
+    /// stereo, as long as the frames).
+    #[arg(long, value_name = "FILE.wav")]
+    pub audio: Option<PathBuf>,
 }
 
 /// What to measure.
@@ -219,6 +223,10 @@ pub struct SimulateArgs {
     /// Sampling interval (s), > 0, at most 1e8 samples in all.
     #[arg(value_parser = number("> 0 (s)"), long, default_value_t = 0.01, allow_negative_numbers = true)]
     pub every: f64,
+    /// Also print each impact as it happens: `{"impact":{..}}` lines between
+    /// the samples.
+    #[arg(long)]
+    pub impacts: bool,
 }
 
 /// Contact model names on the command line.
@@ -287,6 +295,9 @@ pub struct Common {
     /// Anti-aliasing: the samples in every pixel, or only at edges.
     #[arg(long, global = true, value_enum)]
     pub aa: Option<AaFlag>,
+    /// Start the window muted (M unmutes).
+    #[arg(long, global = true)]
+    pub mute: bool,
 }
 
 /// Anti-aliasing schemes on the command line.

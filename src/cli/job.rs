@@ -33,6 +33,8 @@ pub enum Job {
         duration: f64,
         /// Sampling interval (s).
         every: f64,
+        /// Print the impacts too.
+        impacts: bool,
     },
     /// `render`: frames without a window.
     Render {
@@ -42,6 +44,8 @@ pub enum Job {
         time: f64,
         /// What to write.
         output: Output,
+        /// Where to write the soundtrack, if asked.
+        audio: Option<PathBuf>,
         /// The config file being read, never to be replaced.
         input: Option<PathBuf>,
     },
@@ -121,6 +125,7 @@ impl Job {
                     config: asset()?,
                     duration: a.duration,
                     every: a.every,
+                    impacts: a.impacts,
                 }
             }
             Some(Command::Render(a)) => {
@@ -134,10 +139,15 @@ impl Job {
                 output
                     .check(input)
                     .map_err(|e| InputError::Flag(e.to_string()))?;
+                if let Some(audio) = &a.audio {
+                    export::check_output(audio, Kind::Wav, input)
+                        .map_err(|e| InputError::Flag(e.to_string()))?;
+                }
                 Self::Render {
                     config,
                     time: a.time,
                     output,
+                    audio: a.audio,
                     input: input.map(std::path::Path::to_path_buf),
                 }
             }
@@ -353,6 +363,13 @@ fn render_output(a: &RenderArgs) -> Result<crate::headless::Output, InputError> 
             a.fps.short(),
             last.short()
         )));
+    }
+    if a.audio.is_some() && frames.is_none() && a.gif.is_none() {
+        return Err(InputError::Flag(
+            "--audio FILE.wav: allowed with --frames N --out DIR/ or --gif FILE.gif (a soundtrack \
+             needs frames; one picture has none)"
+                .into(),
+        ));
     }
     match (&a.out, &a.gif, frames) {
         (Some(_), Some(_), _) => Err(InputError::Flag(

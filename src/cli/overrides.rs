@@ -27,7 +27,11 @@ impl Common {
     /// The names of the override flags given, in schema order.
     #[must_use]
     pub fn given_flags(&self) -> Vec<&'static str> {
-        self.given().into_iter().map(|g| g.1).collect()
+        let mut flags: Vec<&'static str> = self.given().into_iter().map(|g| g.1).collect();
+        if self.mute {
+            flags.push("--mute");
+        }
+        flags
     }
 
     /// The flags given, as `(config field path, flag name, value as typed)`.

@@ -47,6 +47,23 @@ pub struct Config {
     pub lights: Vec<LightConfig>,
     /// Surface looks.
     pub materials: MaterialsConfig,
+    /// The clicks of the impacts.
+    pub sound: SoundConfig,
+}
+
+/// The clicks of the impacts (the window; `render --audio`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct SoundConfig {
+    /// Loudness of the window's clicks, 0..=1 (0 = silent, as muted). Default
+    /// 0.7. Soundtracks are written at full level.
+    pub volume: f64,
+}
+
+impl Default for SoundConfig {
+    fn default() -> Self {
+        Self { volume: 0.7 }
+    }
 }
 
 /// The cradle's geometry and mass (SI units).
@@ -261,6 +278,7 @@ impl Default for Config {
             camera: CameraConfig::default(),
             lights: look::default_lights(),
             materials: MaterialsConfig::default(),
+            sound: SoundConfig::default(),
         }
     }
 }

@@ -18,5 +18,7 @@ pub const RESTITUTION: RangeInclusive<f64> = 0.0..=1.0;
 pub const DISSIPATION: RangeInclusive<f64> = 0.0..=1e-3;
 /// `cradle.air_density` (kg/m^3).
 pub const AIR_DENSITY: RangeInclusive<f64> = 0.0..=100.0;
+/// `sound.volume`.
+pub const VOLUME: RangeInclusive<f64> = 0.0..=1.0;
 /// `render.samples`.
 pub const SAMPLES: RangeInclusive<u32> = 1..=64;

@@ -356,6 +356,13 @@ impl Config {
         c.material("materials.frame", &m.frame);
         c.material("materials.floor", &m.floor);
 
+        c.num(
+            "sound.volume",
+            self.sound.volume,
+            ranges::VOLUME.contains(&self.sound.volume),
+            "0..=1 (0 = silent)",
+        );
+
         if c.0.is_empty() { Ok(()) } else { Err(c.0) }
     }
 }

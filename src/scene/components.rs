@@ -1,6 +1,6 @@
 //! ECS components, markers, resources and messages of the cradle world.
 
-use crate::physics::{Cradle, Snapshot};
+use crate::physics::{Cradle, Impact, Snapshot};
 use crate::trace;
 use bevy_ecs::prelude::*;
 use glam::{DQuat, DVec3};
@@ -119,6 +119,35 @@ pub struct CradleState {
     pub cradle: Cradle,
     /// Its state at the clock's time.
     pub snapshot: Snapshot,
+}
+
+impl CradleState {
+    /// `cradle` at t = 0, keeping its impacts for [`FrameImpacts`].
+    #[must_use]
+    pub fn new(mut cradle: Cradle) -> Self {
+        cradle.record_impacts();
+        let snapshot = cradle.snapshot(0.0);
+        Self { cradle, snapshot }
+    }
+}
+
+/// The impacts of the last frame: those after the previous frame's time, up
+/// to this one's (none while paused). The sound reads them.
+#[derive(Resource, Debug, Clone, Default)]
+pub struct FrameImpacts {
+    /// Earliest first.
+    pub impacts: Vec<Impact>,
+    /// The first ball's pivot in the world (m): an impact's contact point
+    /// `at` is `(origin.x + at.0, origin.y + at.1, origin.z)`.
+    pub origin: DVec3,
+}
+
+impl FrameImpacts {
+    /// Where impact `i` is in the world (m).
+    #[must_use]
+    pub fn place(&self, i: &Impact) -> DVec3 {
+        self.origin + DVec3::new(i.at.0, i.at.1, 0.0)
+    }
 }
 
 /// The flat scene for the tracer: its camera, lights and settings are set at

@@ -9,7 +9,7 @@ pub mod spawn;
 pub mod systems;
 pub mod view;
 
-pub use components::{CradleState, FlatScene, SimClock, SimState};
+pub use components::{CradleState, FlatScene, FrameImpacts, SimClock, SimState};
 
 use crate::config::Config;
 use bevy_ecs::prelude::*;
@@ -124,15 +124,14 @@ impl CradleWorld {
     /// t = 0: the physics exactly from that state. The box the moving objects stay
     /// in follows the new energy (`lifted` balls at `angle`, the state's bound).
     pub fn start_from(&mut self, config: &Config, theta: &[f64], lifted: usize, angle: f64) {
-        let mut cradle = crate::physics::Cradle::from_state(
+        let cradle = crate::physics::Cradle::from_state(
             config.cradle_params(),
             config.physics.integrator,
             config.physics.dt,
             theta,
             &vec![0.0; theta.len()],
         );
-        let snapshot = cradle.snapshot(0.0);
-        self.world.insert_resource(CradleState { cradle, snapshot });
+        self.world.insert_resource(CradleState::new(cradle));
         let mut bound = config.clone();
         bound.start.lift = lifted;
         bound.start.angle_deg = angle.to_degrees();
@@ -165,6 +164,12 @@ impl CradleWorld {
     #[must_use]
     pub fn state(&self) -> SimState {
         *self.world.resource::<SimState>()
+    }
+
+    /// The impacts of the last frame (none while paused).
+    #[must_use]
+    pub fn impacts(&self) -> &FrameImpacts {
+        self.world.resource::<FrameImpacts>()
     }
 
     /// The physics state of the last frame.

@@ -3,8 +3,8 @@
 //! scene's static part (`view`).
 
 use super::components::{
-    Ball, CradleState, FlatScene, Floor, Light, Material, Pendulum, Rod, Shape, SimClock, SimState,
-    Strand, StrandOf, SwingBox, Transform,
+    Ball, CradleState, FlatScene, Floor, FrameImpacts, Light, Material, Pendulum, Rod, Shape,
+    SimClock, SimState, Strand, StrandOf, SwingBox, Transform,
 };
 use super::view::{self, f32x3};
 use crate::config::{Config, MaterialConfig};
@@ -99,9 +99,11 @@ pub fn respawn(world: &mut World, config: &Config) {
 }
 
 fn insert_resources(world: &mut World, config: &Config) {
-    let mut cradle = config.build_cradle();
-    let snapshot = cradle.snapshot(0.0);
-    world.insert_resource(CradleState { cradle, snapshot });
+    world.insert_resource(CradleState::new(config.build_cradle()));
+    world.insert_resource(FrameImpacts {
+        impacts: Vec::new(),
+        origin: Layout::new(config).first_pivot,
+    });
     world.insert_resource(SimClock::default());
     world.insert_resource(if config.start.running {
         SimState::Running

@@ -1,8 +1,8 @@
 //! The frame's systems, in schedule order: input, physics, extract.
 
 use super::components::{
-    Ball, CradleState, FlatScene, Light, Material, Pendulum, Shape, SimClock, SimState, Strand,
-    StrandOf, SwingBox, Transform,
+    Ball, CradleState, FlatScene, FrameImpacts, Light, Material, Pendulum, Shape, SimClock,
+    SimState, Strand, StrandOf, SwingBox, Transform,
 };
 use super::spawn::{attach_point, ball_transform};
 use crate::trace;
@@ -38,8 +38,14 @@ pub fn advance_clock(state: Res<SimState>, mut clock: ResMut<SimClock>) {
 }
 
 /// Physics: the cradle's state at the clock's time, or, past the frame's
-/// deadline, at the latest time reached (the clock then waits there).
-pub fn step_physics(mut clock: ResMut<SimClock>, mut sim: ResMut<CradleState>) {
+/// deadline, at the latest time reached (the clock then waits there); the
+/// impacts on the way are the frame's.
+pub fn step_physics(
+    mut clock: ResMut<SimClock>,
+    mut sim: ResMut<CradleState>,
+    mut impacts: ResMut<FrameImpacts>,
+) {
+    impacts.impacts.clear();
     if sim.snapshot.t != clock.t {
         let snapshot = match clock.deadline {
             Some(d) => sim.cradle.snapshot_by(clock.t, d),
@@ -48,6 +54,7 @@ pub fn step_physics(mut clock: ResMut<SimClock>, mut sim: ResMut<CradleState>) {
         if snapshot.t < clock.t {
             clock.t = snapshot.t;
         }
+        impacts.impacts = sim.cradle.take_impacts(snapshot.t);
         sim.snapshot = snapshot;
     }
 }
