@@ -1,6 +1,6 @@
 //! What the control panel edits, window-free: the settings it shows, and the
 //! rule for applying them. Changes the running swing can absorb (anti-aliasing,
-//! the time rate) apply live; the others restart from the start position, as the
+//! the time rate, the volume) apply live; the others restart from the start position, as the
 //! keys do. An edit the config's validation refuses is shown, not applied.
 
 use crate::config::{Config, ContactModel};
@@ -33,6 +33,8 @@ pub struct Controls {
     pub adaptive: bool,
     /// Time rate as a power of two.
     pub rate_exp: i32,
+    /// Loudness of the clicks, 0..=1.
+    pub volume: f64,
 }
 
 /// How an edit applies.
@@ -63,6 +65,7 @@ impl Controls {
             samples: config.render.samples,
             adaptive: config.render.adaptive,
             rate_exp,
+            volume: config.sound.volume,
         }
     }
 
@@ -83,6 +86,7 @@ impl Controls {
         c.physics.integrator = self.integrator;
         c.render.samples = self.samples;
         c.render.adaptive = self.adaptive;
+        c.sound.volume = self.volume;
         c.validate().map_err(|errors| {
             errors
                 .iter()
@@ -101,12 +105,13 @@ impl Controls {
 }
 
 /// Whether going from `from` to `to` is a change the running swing absorbs:
-/// they differ in anti-aliasing at most.
+/// they differ in anti-aliasing and volume at most.
 #[must_use]
 pub fn absorbed(from: &Config, to: &Config) -> bool {
     let mut swing = from.clone();
     swing.render.samples = to.render.samples;
     swing.render.adaptive = to.render.adaptive;
+    swing.sound.volume = to.sound.volume;
     swing == *to
 }
 
@@ -172,6 +177,9 @@ mod tests {
         aa.samples = 16;
         aa.adaptive = true;
         assert!(matches!(aa.apply_to(&c), Ok(Apply::Live(n)) if n.render.samples == 16));
+        let mut quiet = same.clone();
+        quiet.volume = 0.2;
+        assert!(matches!(quiet.apply_to(&c), Ok(Apply::Live(n)) if n.sound.volume == 0.2));
         let mut more = same.clone();
         more.balls = 7;
         assert!(matches!(more.apply_to(&c), Ok(Apply::Restart(n)) if n.cradle.balls == 7));

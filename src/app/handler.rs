@@ -7,6 +7,7 @@ use super::mouse::Mouse;
 use super::session::{Effect, Session};
 use super::surface::Surface;
 use super::{keys, notice, screenshot};
+use crate::sound::{Sound, device};
 use winit::application::ApplicationHandler;
 use winit::event::{ElementState, MouseButton, WindowEvent};
 use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoopProxy};
@@ -21,6 +22,10 @@ pub struct App {
     ctrl: bool,
     /// Wakes the loop from other threads (a screenshot saved).
     proxy: EventLoopProxy<UserEvent>,
+    /// The clicks, on their own thread.
+    sound: Sound,
+    /// The session's hushes the sound has heard of.
+    hushes: u64,
     /// Why the loop was ended early, returned by `run`.
     pub failure: Option<anyhow::Error>,
 }
@@ -30,14 +35,41 @@ impl App {
     /// frames trace while the one before is drawn ([`Session::pipeline`]).
     pub fn new(mut session: Session, proxy: EventLoopProxy<UserEvent>) -> Self {
         session.pipeline();
+        let device = device::open();
+        if let Err(e) = &device {
+            session.set_silent(format!("{e:#}"));
+        }
+        let sound = Sound::start(device, session.config().sound.volume, session.muted());
         Self {
+            hushes: session.hushes(),
             session,
             surface: None,
             mouse: Mouse::default(),
             ctrl: false,
             proxy,
+            sound,
             failure: None,
         }
+    }
+
+    /// Plays the clicks of the frame just presented; drops those not yet
+    /// heard when the swing stopped, restarted or was grabbed since.
+    fn hear(&mut self, shown: std::time::Instant) {
+        if self.session.hushes() != self.hushes {
+            self.hushes = self.session.hushes();
+            self.sound.flush();
+        }
+        self.sound.set_muted(self.session.muted());
+        self.sound.set_volume(self.session.config().sound.volume);
+        let heard = self.session.heard();
+        if heard.is_empty() {
+            return;
+        }
+        let timbre = crate::sound::track::timbre(self.session.config());
+        let scene = self.session.scene();
+        let rate = self.session.rate();
+        let clicks = heard.iter().flat_map(|a| a.clicks(&timbre, scene, rate));
+        self.sound.play(clicks.collect::<Vec<_>>(), shown);
     }
 
     /// Saves what the window shows: with the HUD on, the picture with it (and
@@ -207,6 +239,7 @@ impl ApplicationHandler<UserEvent> for App {
                 if let Err(e) = surface.draw(panel) {
                     self.fail(event_loop, e);
                 }
+                self.hear(std::time::Instant::now());
             }
             _ => {}
         }

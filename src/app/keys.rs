@@ -27,6 +27,8 @@ pub enum Action {
     Panel,
     /// Ctrl+Z: undo the last change made in the panel (a preset included).
     Undo,
+    /// M: mute or unmute the clicks.
+    Mute,
     /// Escape: quit.
     Quit,
 }
@@ -57,6 +59,7 @@ pub fn action(key: &Key, ctrl: bool) -> Option<Action> {
             "." => Some(Action::Rate(1)),
             "n" => Some(Action::Step),
             "c" => Some(Action::HomeView),
+            "m" => Some(Action::Mute),
             " " => Some(Action::TogglePause),
             _ => None,
         },
@@ -65,7 +68,7 @@ pub fn action(key: &Key, ctrl: bool) -> Option<Action> {
 }
 
 /// The help the HUD shows: every key and mouse action, as (keys, what).
-pub const HELP: [(&str, &str); 17] = [
+pub const HELP: [(&str, &str); 18] = [
     ("SPACE", "start / stop the swing"),
     ("left-drag", "lift a ball; let go: swing"),
     ("R", "reset cradle and time rate"),
@@ -81,6 +84,7 @@ pub const HELP: [(&str, &str); 17] = [
     ("TAB", "control panel, presets"),
     ("CTRL+Z", "undo a panel change"),
     ("S", "save a screenshot"),
+    ("M", "mute / unmute the clicks"),
     ("H or F1", "help / no HUD / status"),
     ("ESC", "quit (in a field: leave)"),
 ];
@@ -128,6 +132,7 @@ mod tests {
         assert_eq!(action(&ch(".")), Some(Action::Rate(1)));
         assert_eq!(action(&ch("n")), Some(Action::Step));
         assert_eq!(action(&ch("c")), Some(Action::HomeView));
+        assert_eq!(action(&ch("m")), Some(Action::Mute));
         assert_eq!(action(&ch("x")), None);
         assert_eq!(action(&Key::Named(NamedKey::Tab)), Some(Action::Panel));
     }

@@ -13,10 +13,13 @@
 //! - `reload`, `screenshot`: the config watcher, S's PNGs.
 //! - `notice`, `presets`, `controls`: what an action did, shown for a moment;
 //!   the panel's presets and saved setups; the panel's settings and undo.
+//! - `audible`: each frame's impacts, held until the frame that shows them is
+//!   presented, then made into clicks for the [`crate::sound`] thread.
 //!
 //! The window, pixels and event loop stay out of the World, the physics and the
 //! tracer.
 
+pub mod audible;
 pub mod controls;
 pub mod drag;
 mod handler;

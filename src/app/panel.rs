@@ -98,9 +98,18 @@ impl Panel {
         let custom = session.custom_start().map(str::to_owned);
         let mut request = None;
         let mut left = None;
+        let mut muted = session.muted();
         let output = self.ctx.run_ui(input, |ui| {
-            (request, left) = panel_ui(ui.ctx(), &mut controls, custom.as_deref(), &shares, energy);
+            let shown = Shown {
+                custom: custom.as_deref(),
+                shares: &shares,
+                energy,
+            };
+            (request, left) = panel_ui(ui.ctx(), &mut controls, &mut muted, &shown);
         });
+        if muted != session.muted() {
+            session.act(crate::app::keys::Action::Mute);
+        }
         if controls != before {
             session.apply_controls(&controls);
         }
@@ -182,15 +191,29 @@ enum Request {
     Undo,
 }
 
-/// The panel's widgets; `custom` says what a drag to the right lifted. Returns
-/// what the user asked for, and the panel's left edge (points).
+/// What the panel shows besides the settings it edits.
+struct Shown<'a> {
+    /// What a drag to the right lifted.
+    custom: Option<&'a str>,
+    /// Each ball's share of the energy.
+    shares: &'a [f64],
+    /// The energy left, and its error.
+    energy: (f64, f64),
+}
+
+/// The panel's widgets, editing the settings and the mute. Returns what the
+/// user asked for, and the panel's left edge (points).
 fn panel_ui(
     ctx: &Context,
     c: &mut Controls,
-    custom: Option<&str>,
-    shares: &[f64],
-    energy: (f64, f64),
+    muted: &mut bool,
+    shown: &Shown<'_>,
 ) -> (Option<Request>, Option<f32>) {
+    let Shown {
+        custom,
+        shares,
+        energy,
+    } = *shown;
     let mut request = None;
     let shown = egui::Window::new("Controls")
         .anchor(egui::Align2::RIGHT_TOP, [-8.0, 8.0])
@@ -280,6 +303,14 @@ fn panel_ui(
                         }
                     }),
             );
+            ui.horizontal(|ui| {
+                ui.add(
+                    egui::Slider::new(&mut c.volume, ranges::VOLUME)
+                        .clamping(never)
+                        .text("volume"),
+                );
+                ui.checkbox(muted, "mute (M)");
+            });
             ui.separator();
             energy_bars(ui, shares, energy);
         });
@@ -341,7 +372,7 @@ fn energy_bars(ui: &mut egui::Ui, shares: &[f64], (left, error): (f64, f64)) {
 
 #[cfg(test)]
 mod tests {
-    use super::panel_ui;
+    use super::{Shown, panel_ui};
     use crate::app::controls::Controls;
     use crate::config::{Config, ContactModel, ranges};
 
@@ -351,7 +382,12 @@ mod tests {
         let mut c = controls.clone();
         for _ in 0..frames {
             let _ = ctx.run_ui(egui::RawInput::default(), |ui| {
-                panel_ui(ui.ctx(), &mut c, None, &[0.5, 0.5], (1.0, 0.0));
+                let shown = Shown {
+                    custom: None,
+                    shares: &[0.5, 0.5],
+                    energy: (1.0, 0.0),
+                };
+                panel_ui(ui.ctx(), &mut c, &mut false, &shown);
             });
         }
         c
@@ -371,6 +407,7 @@ mod tests {
         config.cradle.air_density = *ranges::AIR_DENSITY.end();
         config.contact.dissipation = config.dissipation_limit().0;
         config.render.samples = *ranges::SAMPLES.end();
+        config.sound.volume = *ranges::VOLUME.end();
         let mut wide = Config::default();
         wide.cradle.gap = 0.05;
         wide.contact.model = ContactModel::Hertz;

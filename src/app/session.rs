@@ -102,6 +102,15 @@ pub struct Session {
     /// The last frame's physics could not reach the clock's time within
     /// [`PHYSICS_BUDGET`]: the swing runs slower than the rate says.
     behind: bool,
+    /// Impacts waiting for the frame that shows them, for the sound.
+    pending: Pending,
+    /// M: no clicks.
+    muted: bool,
+    /// Why the window is silent whatever M says (no audio server), if it is.
+    silent: Option<String>,
+    /// Times the swing stopped, restarted or was grabbed: clicks from before
+    /// such a time are stale.
+    hushes: u64,
 }
 
 /// The right edge of the fit region without the panel.
@@ -131,6 +140,7 @@ impl Session {
         overrides: Common,
     ) -> anyhow::Result<Self> {
         fit_window(&mut config);
+        let muted = overrides.mute;
         Ok(Self {
             pool: trace::pool(config.render.threads)?,
             world: CradleWorld::new(&config),
@@ -156,6 +166,10 @@ impl Session {
             history: History::default(),
             fit_right: FULL_WIDTH,
             behind: false,
+            pending: Pending::default(),
+            muted,
+            silent: None,
+            hushes: 0,
         })
     }
 
@@ -236,8 +250,18 @@ impl Session {
                 if !self.running() {
                     // Queried at the new time, as any frame: exact at any rate.
                     self.world.show_at(self.time() + STEP * self.rate);
+                    self.stepped(false);
                     self.retrace = true;
                 }
+            }
+            Action::Mute => {
+                self.muted = !self.muted;
+                let said = match (&self.silent, self.muted) {
+                    (_, true) => "sound muted (M: on)".to_owned(),
+                    (Some(why), false) => format!("sound on, but silent: {why}"),
+                    (None, false) => "sound on".to_owned(),
+                };
+                self.notify(said, notice::GOOD);
             }
             Action::Screenshot => return Effect::Screenshot,
             Action::Quit => return Effect::Quit,
@@ -292,9 +316,12 @@ impl Session {
         self.world.set_quality(r.samples, adaptive);
     }
 
-    /// Hidden time does not count: the swing resumes where it stopped.
+    /// Hidden time does not count: the swing resumes where it stopped. No click
+    /// from before sounds after.
     pub fn hold_clock(&mut self) {
         self.last_frame = None;
+        self.pending.clear();
+        self.hushes += 1;
     }
 
     /// Paused time does not count either; the changed scene is traced again.
@@ -479,6 +506,7 @@ impl Session {
             self.world.frame_by(want, Some(now + PHYSICS_BUDGET));
             self.behind = want > 0.0 && self.time() - before < 0.999 * want;
             let now_traced = self.tracer.frame(&self.pool, self.world.scene(), running);
+            self.stepped(now_traced.is_none());
             traced = now_traced.or(traced);
             if running && dt > 0.0 {
                 self.fps = smooth(self.fps, 1.0 / dt);
@@ -497,10 +525,56 @@ impl Session {
         self.last_frame = running.then_some(now);
     }
 
+    /// The last frame's impacts wait for the frame that shows them: the next
+    /// step's if `pipelined`, else the one about to be presented.
+    fn stepped(&mut self, pipelined: bool) {
+        let impacts = self.world.impacts();
+        if !impacts.impacts.is_empty() {
+            let frame = Audible {
+                t: self.time(),
+                impacts: impacts.clone(),
+            };
+            self.pending.stepped(frame, pipelined);
+        } else if !pipelined {
+            self.pending.stepped_none();
+        }
+    }
+
+    /// The impacts the frame being presented shows, with their simulated
+    /// times: once each, none when muted.
+    pub fn heard(&mut self) -> Vec<Audible> {
+        let shown = self.pending.take_shown();
+        if self.muted { Vec::new() } else { shown }
+    }
+
+    /// How many times the swing stopped, restarted or was grabbed: the sound
+    /// drops what it has not played yet when this changes.
+    #[must_use]
+    pub fn hushes(&self) -> u64 {
+        self.hushes
+    }
+
+    /// Muted (M, `--mute`).
+    #[must_use]
+    pub fn muted(&self) -> bool {
+        self.muted
+    }
+
+    /// The window is silent whatever M says, for `why` (no audio server).
+    pub fn set_silent(&mut self, why: impl Into<String>) {
+        self.silent = Some(why.into());
+    }
+
     /// Starts tracing the frame [`Self::step`] left (pipelined), if it left one;
     /// the next step takes it back.
     pub fn launch(&mut self) {
         self.tracer.launch_due(&self.pool, self.world.scene());
+    }
+
+    /// The flat scene of the last frame (its camera places the clicks).
+    #[must_use]
+    pub fn scene(&self) -> &crate::trace::Scene {
+        self.world.scene()
     }
 
     /// The last picture traced.
@@ -521,6 +595,8 @@ impl Session {
         self.world.cradle().snapshot.t
     }
 }
+
+use super::audible::{Audible, Pending};
 
 mod dragging;
 mod editing;

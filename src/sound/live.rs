@@ -146,10 +146,10 @@ impl Sound {
 
     /// Mutes or unmutes; muting drops the clicks not yet heard.
     pub fn set_muted(&mut self, muted: bool) {
-        self.muted = muted;
-        if muted {
+        if muted && !self.muted {
             self.flush();
         }
+        self.muted = muted;
     }
 
     /// The level clicks are heard at, 0..=1 (the panel's slider, `sound.volume`).

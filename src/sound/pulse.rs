@@ -23,6 +23,8 @@ const TARGET: f64 = 0.03;
 const REQUEST: f64 = 0.01;
 /// A server silent this long is gone (the thread then ends).
 const TIMEOUT: Duration = Duration::from_secs(3);
+/// The server's clock is asked after every this many writes (100 ms).
+const CLOCK_EVERY: u64 = 10;
 
 /// Tags of the requests whose replies the loop waits for.
 const CREATE: u32 = 2;
@@ -35,8 +37,11 @@ pub struct Pulse {
     channel: u32,
     /// Bytes the server asked for and has not been sent yet.
     asked: u32,
-    /// Bytes written so far.
+    /// Bytes written so far, in this many writes.
     written: u64,
+    writes: u64,
+    /// Reused for each write.
+    bytes: Vec<u8>,
     /// From the last latency reply: when (s since the epoch) the byte at
     /// `heard` of the stream was being heard.
     clock: Option<(f64, f64)>,
@@ -169,6 +174,8 @@ impl Pulse {
             channel: stream.channel,
             asked: stream.requested_bytes,
             written: 0,
+            writes: 0,
+            bytes: Vec::new(),
             clock: None,
             underruns: 0,
         })
@@ -215,11 +222,17 @@ impl Device for Pulse {
     }
 
     fn write(&mut self, samples: &[i16]) -> anyhow::Result<()> {
-        let bytes: Vec<u8> = samples.iter().flat_map(|s| s.to_le_bytes()).collect();
-        protocol::write_memblock(self.sock.get_mut(), self.channel, &bytes, 0)
+        self.bytes.clear();
+        self.bytes
+            .extend(samples.iter().flat_map(|s| s.to_le_bytes()));
+        protocol::write_memblock(self.sock.get_mut(), self.channel, &self.bytes, 0)
             .context("the audio server went away")?;
-        self.asked = self.asked.saturating_sub(bytes.len() as u32);
-        self.written += bytes.len() as u64;
+        self.asked = self.asked.saturating_sub(self.bytes.len() as u32);
+        self.written += self.bytes.len() as u64;
+        self.writes += 1;
+        if self.writes % CLOCK_EVERY != 1 {
+            return Ok(());
+        }
         protocol::write_command_message(
             self.sock.get_mut(),
             LATENCY,

@@ -154,6 +154,10 @@ impl Mixer {
     /// sounding then, at `volume`, through the soft limit; forgets the clicks
     /// that have ended by the chunk's end.
     pub fn fill(&mut self, first: u64, volume: f64, out: &mut [f32]) {
+        if self.clicks.is_empty() {
+            out.fill(0.0);
+            return;
+        }
         let frames = out.len() / 2;
         let rate = f64::from(RATE);
         let start = first as f64 / rate;

@@ -7,7 +7,8 @@
 # resizes do not hang it, a saved config reloads and a bad one keeps the
 # scene, S saves unique screenshots, Escape exits 0, a window destroyed
 # from outside exits 0, and heavy settings (200 balls of the realistic cradle,
-# 4K at 64 samples) still answer Escape.
+# 4K at 64 samples) still answer Escape; and the sound (sound.sh): clicks at
+# the swing's rhythm, silence when muted, a silent window without a server.
 set -uo pipefail
 bin="$1"
 work="$(mktemp -d)"
@@ -185,6 +186,9 @@ WGPU_BACKEND=metal timeout 20 "$bin" --width 64 --height 32 > "$work/noadapter.l
 code=$?
 [ "$code" = "1" ] && grep -q "No usable graphics adapter" "$work/noadapter.log" && ! grep -q panicked "$work/noadapter.log" \
   && ok "no adapter: message and exit 1" || { bad "no adapter: message and exit 1 (got $code)"; cat "$work/noadapter.log"; }
+
+# shellcheck source=sound.sh
+. "$(dirname "$0")/sound.sh"
 
 [ "$fail" -eq 0 ] || { echo "--- app log"; cat "$work/app.log"; }
 echo "window: $pass passed, $fail failed"

@@ -101,9 +101,10 @@ impl Session {
             } else {
                 format!("energy err {err:+.1e}")
             };
+            let muted = if self.muted { "  MUTED" } else { "" };
             lines.push((
                 format!(
-                    "balls {}  lifted {}  {}  {energy}",
+                    "balls {}  lifted {}  {}  {energy}{muted}",
                     c.cradle.balls,
                     self.lifted_text(),
                     c.contact.model.name()
