@@ -89,6 +89,8 @@ fn every_out_of_range_field_is_located() {
             "0..=1",
         ),
         ("camera", "fov_deg: 0.5", "camera.fov_deg", "1..=170"),
+        ("sound", "volume: 1.5", "sound.volume", "0..=1"),
+        ("sound", "volume: -0.1", "sound.volume", "0..=1"),
     ];
     // Looking at the eye itself: derived from the defaults, so it follows them.
     let eye = Config::default().camera.position;

@@ -34,48 +34,90 @@ impl Audible {
     }
 }
 
-/// Impacts waiting for their frame to be presented.
+/// What the window hears: impacts waiting for their frame to be presented,
+/// the mute, and the times the swing stopped, restarted or was grabbed.
 #[derive(Debug, Clone, Default)]
-pub struct Pending {
+pub struct Hearing {
     /// Stepped and still tracing (shown after the next step).
     tracing: Option<Audible>,
     /// Shown by the frame about to be presented.
     shown: Vec<Audible>,
+    /// M: no clicks.
+    muted: bool,
+    /// Why the window is silent whatever M says (no audio server), if it is.
+    silent: Option<String>,
+    /// Times the swing stopped, restarted or was grabbed: clicks from before
+    /// such a time are stale.
+    hushes: u64,
 }
 
-impl Pending {
-    /// A frame was stepped; `pipelined`: it is shown after the next step, else
-    /// by the frame about to be presented.
-    pub fn stepped(&mut self, frame: Audible, pipelined: bool) {
-        self.shown.extend(self.tracing.take());
-        if pipelined {
-            self.tracing = Some(frame);
-        } else {
-            self.shown.push(frame);
+impl Hearing {
+    /// Nothing waiting; muted if `muted` (`--mute`).
+    #[must_use]
+    pub fn new(muted: bool) -> Self {
+        Self {
+            muted,
+            ..Self::default()
         }
     }
 
-    /// A frame without impacts was stepped and traced at once: the one still
-    /// tracing, if any, is shown by it.
-    pub fn stepped_none(&mut self) {
+    /// A frame was stepped, with its impacts if it had any; `pipelined`: it is
+    /// shown after the next step, else by the frame about to be presented.
+    /// Either way the frame stepped before is presented now.
+    pub fn stepped(&mut self, frame: Option<Audible>, pipelined: bool) {
         self.shown.extend(self.tracing.take());
+        if pipelined {
+            self.tracing = frame;
+        } else {
+            self.shown.extend(frame);
+        }
     }
 
-    /// The impacts of the frame being presented, taken.
+    /// The impacts of the frame being presented, taken; none when muted.
     pub fn take_shown(&mut self) -> Vec<Audible> {
-        std::mem::take(&mut self.shown)
+        let shown = std::mem::take(&mut self.shown);
+        if self.muted { Vec::new() } else { shown }
     }
 
-    /// Forgets everything waiting: the swing stopped, restarted or was grabbed.
-    pub fn clear(&mut self) {
+    /// The swing stopped, restarted or was grabbed: everything waiting goes,
+    /// and the sound is told to drop what it has not played.
+    pub fn hush(&mut self) {
         self.tracing = None;
         self.shown.clear();
+        self.hushes += 1;
+    }
+
+    /// How many times [`Self::hush`] was called.
+    #[must_use]
+    pub fn hushes(&self) -> u64 {
+        self.hushes
+    }
+
+    /// Muted.
+    #[must_use]
+    pub fn muted(&self) -> bool {
+        self.muted
+    }
+
+    /// Mutes or unmutes (M); says what that did.
+    pub fn toggle_mute(&mut self) -> String {
+        self.muted = !self.muted;
+        match (&self.silent, self.muted) {
+            (_, true) => "sound muted (M: on)".to_owned(),
+            (Some(why), false) => format!("sound on, but silent: {why}"),
+            (None, false) => "sound on".to_owned(),
+        }
+    }
+
+    /// The window is silent whatever M says, for `why` (no audio server).
+    pub fn set_silent(&mut self, why: impl Into<String>) {
+        self.silent = Some(why.into());
     }
 }
 
 #[cfg(test)]
 mod tests {
-    use super::{Audible, Pending};
+    use super::{Audible, Hearing};
     use crate::scene::FrameImpacts;
 
     fn frame(t: f64) -> Audible {
@@ -87,20 +129,32 @@ mod tests {
 
     #[test]
     fn a_pipelined_frame_is_heard_when_the_next_step_presents_it() {
-        let mut p = Pending::default();
-        p.stepped(frame(1.0), true);
+        let mut p = Hearing::default();
+        p.stepped(Some(frame(1.0)), true);
         assert!(p.take_shown().is_empty(), "still tracing");
-        p.stepped(frame(2.0), true);
+        p.stepped(Some(frame(2.0)), true);
         let shown: Vec<f64> = p.take_shown().iter().map(|a| a.t).collect();
         assert_eq!(shown, [1.0]);
+        // A frame without impacts still presents the one before.
+        p.stepped(None, true);
+        let shown: Vec<f64> = p.take_shown().iter().map(|a| a.t).collect();
+        assert_eq!(shown, [2.0]);
         // Paused frames trace at once: shown now, with the one still waiting.
-        p.stepped(frame(3.0), false);
+        p.stepped(Some(frame(3.0)), true);
+        p.stepped(Some(frame(4.0)), false);
         let shown: Vec<f64> = p.take_shown().iter().map(|a| a.t).collect();
-        assert_eq!(shown, [2.0, 3.0]);
-        p.stepped(frame(4.0), true);
-        p.clear();
-        p.stepped(frame(5.0), false);
+        assert_eq!(shown, [3.0, 4.0]);
+        p.stepped(Some(frame(5.0)), true);
+        p.hush();
+        assert_eq!(p.hushes(), 1);
+        p.stepped(Some(frame(6.0)), false);
         let shown: Vec<f64> = p.take_shown().iter().map(|a| a.t).collect();
-        assert_eq!(shown, [5.0], "nothing from before the clear");
+        assert_eq!(shown, [6.0], "nothing from before the hush");
+        // Muted: nothing, and M says why an unmuted window may stay silent.
+        p.set_silent("no audio server");
+        assert!(p.toggle_mute().contains("muted"));
+        p.stepped(Some(frame(7.0)), false);
+        assert!(p.take_shown().is_empty());
+        assert!(p.toggle_mute().contains("no audio server"));
     }
 }

@@ -303,18 +303,23 @@ fn panel_ui(
                         }
                     }),
             );
-            ui.horizontal(|ui| {
-                ui.add(
-                    egui::Slider::new(&mut c.volume, ranges::VOLUME)
-                        .clamping(never)
-                        .text("volume"),
-                );
-                ui.checkbox(muted, "mute (M)");
-            });
+            sound_row(ui, &mut c.volume, muted);
             ui.separator();
             energy_bars(ui, shares, energy);
         });
     (request, shown.map(|s| s.response.rect.left()))
+}
+
+/// The clicks' volume and the mute.
+fn sound_row(ui: &mut egui::Ui, volume: &mut f64, muted: &mut bool) {
+    ui.horizontal(|ui| {
+        ui.add(
+            egui::Slider::new(volume, ranges::VOLUME)
+                .clamping(egui::SliderClamping::Never)
+                .text("volume"),
+        );
+        ui.checkbox(muted, "mute (M)");
+    });
 }
 
 /// The presets list, "save setup" and "undo": what the user asked, if anything.

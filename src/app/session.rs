@@ -102,15 +102,8 @@ pub struct Session {
     /// The last frame's physics could not reach the clock's time within
     /// [`PHYSICS_BUDGET`]: the swing runs slower than the rate says.
     behind: bool,
-    /// Impacts waiting for the frame that shows them, for the sound.
-    pending: Pending,
-    /// M: no clicks.
-    muted: bool,
-    /// Why the window is silent whatever M says (no audio server), if it is.
-    silent: Option<String>,
-    /// Times the swing stopped, restarted or was grabbed: clicks from before
-    /// such a time are stale.
-    hushes: u64,
+    /// Impacts waiting for the frame that shows them, and the mute.
+    hearing: Hearing,
 }
 
 /// The right edge of the fit region without the panel.
@@ -166,10 +159,7 @@ impl Session {
             history: History::default(),
             fit_right: FULL_WIDTH,
             behind: false,
-            pending: Pending::default(),
-            muted,
-            silent: None,
-            hushes: 0,
+            hearing: Hearing::new(muted),
         })
     }
 
@@ -255,12 +245,7 @@ impl Session {
                 }
             }
             Action::Mute => {
-                self.muted = !self.muted;
-                let said = match (&self.silent, self.muted) {
-                    (_, true) => "sound muted (M: on)".to_owned(),
-                    (Some(why), false) => format!("sound on, but silent: {why}"),
-                    (None, false) => "sound on".to_owned(),
-                };
+                let said = self.hearing.toggle_mute();
                 self.notify(said, notice::GOOD);
             }
             Action::Screenshot => return Effect::Screenshot,
@@ -320,8 +305,7 @@ impl Session {
     /// from before sounds after.
     pub fn hold_clock(&mut self) {
         self.last_frame = None;
-        self.pending.clear();
-        self.hushes += 1;
+        self.hearing.hush();
     }
 
     /// Paused time does not count either; the changed scene is traced again.
@@ -529,40 +513,35 @@ impl Session {
     /// step's if `pipelined`, else the one about to be presented.
     fn stepped(&mut self, pipelined: bool) {
         let impacts = self.world.impacts();
-        if !impacts.impacts.is_empty() {
-            let frame = Audible {
-                t: self.time(),
-                impacts: impacts.clone(),
-            };
-            self.pending.stepped(frame, pipelined);
-        } else if !pipelined {
-            self.pending.stepped_none();
-        }
+        let frame = (!impacts.impacts.is_empty()).then(|| Audible {
+            t: self.time(),
+            impacts: impacts.clone(),
+        });
+        self.hearing.stepped(frame, pipelined);
     }
 
     /// The impacts the frame being presented shows, with their simulated
     /// times: once each, none when muted.
     pub fn heard(&mut self) -> Vec<Audible> {
-        let shown = self.pending.take_shown();
-        if self.muted { Vec::new() } else { shown }
+        self.hearing.take_shown()
     }
 
     /// How many times the swing stopped, restarted or was grabbed: the sound
     /// drops what it has not played yet when this changes.
     #[must_use]
     pub fn hushes(&self) -> u64 {
-        self.hushes
+        self.hearing.hushes()
     }
 
     /// Muted (M, `--mute`).
     #[must_use]
     pub fn muted(&self) -> bool {
-        self.muted
+        self.hearing.muted()
     }
 
     /// The window is silent whatever M says, for `why` (no audio server).
     pub fn set_silent(&mut self, why: impl Into<String>) {
-        self.silent = Some(why.into());
+        self.hearing.set_silent(why);
     }
 
     /// Starts tracing the frame [`Self::step`] left (pipelined), if it left one;
@@ -596,7 +575,7 @@ impl Session {
     }
 }
 
-use super::audible::{Audible, Pending};
+use super::audible::{Audible, Hearing};
 
 mod dragging;
 mod editing;

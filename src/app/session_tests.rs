@@ -528,3 +528,56 @@ fn pipelined_frames_show_the_frame_before_and_a_pause_shows_the_last_state() {
     assert!(inline.image().expect("in line").rgba == piped.image().expect("piped").rgba);
     assert_eq!(inline.time(), piped.time());
 }
+
+#[test]
+fn impacts_are_heard_once_with_their_frame_and_never_after_a_pause_or_when_muted() {
+    let mut s = session();
+    s.pipeline();
+    let now = Instant::now();
+    s.step(now);
+    s.act(Action::TogglePause);
+    // The default cradle's first impact comes at 0.205 s: by 0.25 s (15
+    // frames), heard once, each at its simulated time before the frame's.
+    let mut heard = Vec::new();
+    let mut now = now;
+    for _ in 0..15 {
+        now = frames(&mut s, now, 1);
+        s.launch();
+        heard.extend(s.heard());
+    }
+    let times: Vec<f64> = heard
+        .iter()
+        .flat_map(|a| a.impacts.impacts.iter().map(move |i| (i.t, a.t)))
+        .map(|(t, frame)| {
+            assert!(t <= frame, "an impact is heard with a frame at or after it");
+            t
+        })
+        .collect();
+    assert_eq!(times.len(), 4, "the chain's four contacts, once: {times:?}");
+    // Pipelined, the frame stepped with the next impact is still tracing when
+    // the swing is paused: its impacts are dropped, not heard after.
+    let hushes = s.hushes();
+    for _ in 0..13 {
+        now = frames(&mut s, now, 1);
+        s.launch();
+        assert!(
+            s.heard().is_empty() || s.time() > 0.614,
+            "no impact before the second"
+        );
+    }
+    s.act(Action::TogglePause);
+    assert!(s.hushes() > hushes, "the sound is told to drop what it has");
+    frames(&mut s, now, 3);
+    assert!(s.heard().is_empty());
+    // Muted: nothing is heard, whatever the frames show.
+    assert!(!s.muted());
+    s.act(Action::Mute);
+    assert!(s.muted());
+    assert!(s.hud_lines()[1].0.contains("MUTED"));
+    s.act(Action::TogglePause);
+    for _ in 0..60 {
+        now = frames(&mut s, now, 1);
+        s.launch();
+        assert!(s.heard().is_empty());
+    }
+}

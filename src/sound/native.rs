@@ -81,7 +81,7 @@ fn build(queue: Arc<Queue>) -> anyhow::Result<cpal::Stream> {
         .ok_or_else(|| anyhow!("the audio output device plays no 48 kHz stereo"))?;
     let stream = device
         .build_output_stream(
-            &config.config(),
+            config.config(),
             move |data: &mut [f32], _| {
                 let mut samples = queue.samples.lock().unwrap_or_else(|e| e.into_inner());
                 if samples.len() < data.len() {

@@ -101,7 +101,7 @@ impl Session {
             } else {
                 format!("energy err {err:+.1e}")
             };
-            let muted = if self.muted { "  MUTED" } else { "" };
+            let muted = if self.muted() { "  MUTED" } else { "" };
             lines.push((
                 format!(
                     "balls {}  lifted {}  {}  {energy}{muted}",
