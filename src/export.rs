@@ -297,8 +297,8 @@ pub fn write_png(path: &Path, img: &Image) -> Result<(), WriteError> {
 }
 
 /// Writes a 16-bit stereo WAV of `frames` frames at `rate` Hz, atomically,
-/// asking `chunk` for interleaved left/right samples (-1..=1) a second at a
-/// time from frame `first` on: a long soundtrack never sits whole in memory.
+/// asking `chunk` for interleaved left/right samples a second at a time from
+/// frame `first` on: a long soundtrack never sits whole in memory.
 ///
 /// # Errors
 /// When the file cannot be created or written.
@@ -306,7 +306,7 @@ pub fn write_wav(
     path: &Path,
     rate: u32,
     frames: u64,
-    mut chunk: impl FnMut(u64, &mut [f32]),
+    mut chunk: impl FnMut(u64, &mut [i16]),
 ) -> Result<(), WriteError> {
     create_folder(path)?;
     let spec = hound::WavSpec {
@@ -322,11 +322,10 @@ pub fn write_wav(
     while first < frames {
         let n = (frames - first).min(u64::from(rate));
         buf.clear();
-        buf.resize(2 * n as usize, 0.0);
+        buf.resize(2 * n as usize, 0);
         chunk(first, &mut buf);
         for v in &buf {
-            wav.write_sample(crate::sound::synth::pcm(*v))
-                .map_err(|e| fail(path, e))?;
+            wav.write_sample(*v).map_err(|e| fail(path, e))?;
         }
         first += n;
     }

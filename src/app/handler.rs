@@ -7,7 +7,7 @@ use super::mouse::Mouse;
 use super::session::{Effect, Session};
 use super::surface::Surface;
 use super::{keys, notice, screenshot};
-use crate::sound::{Sound, device};
+use crate::sound::{self, Sound};
 use winit::application::ApplicationHandler;
 use winit::event::{ElementState, MouseButton, WindowEvent};
 use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoopProxy};
@@ -35,7 +35,7 @@ impl App {
     /// frames trace while the one before is drawn ([`Session::pipeline`]).
     pub fn new(mut session: Session, proxy: EventLoopProxy<UserEvent>) -> Self {
         session.pipeline();
-        let device = device::open();
+        let device = sound::output();
         if let Err(e) = &device {
             session.set_silent(format!("{e:#}"));
         }

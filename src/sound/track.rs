@@ -77,12 +77,17 @@ impl Soundtrack {
         clicks.sort_by(|a, b| a.at.total_cmp(&b.at));
         let mut next = clicks.into_iter().peekable();
         let mut mixer = Mixer::default();
+        let mut mix = Vec::new();
         export::write_wav(path, RATE, self.frames, |first, out| {
             let end = (first + out.len() as u64 / 2) as f64 / f64::from(RATE);
             while let Some(c) = next.next_if(|c| c.at < end) {
                 mixer.add(c);
             }
-            mixer.fill(first, 1.0, out);
+            mix.resize(out.len(), 0.0);
+            mixer.fill(first, 1.0, &mut mix);
+            for (o, m) in out.iter_mut().zip(&mix) {
+                *o = super::synth::pcm(*m);
+            }
         })
     }
 }
