@@ -16,12 +16,17 @@ record() {
   sleep "$1"
   kill "$rec" 2>/dev/null; wait "$rec" 2>/dev/null
 }
+# Starts the app with the flags given, its log in $log, and lets it swing.
+swing() {
+  "$bin" "$@" > "$log" 2>&1 &
+  pid=$!
+  wid=$(find_window)
+  xdotool windowfocus "$wid" 2>/dev/null; sleep 1
+  xdotool key space
+}
 
-"$bin" --width 320 --height 200 > "$work/sound.log" 2>&1 &
-pid=$!
-wid=$(find_window)
-xdotool windowfocus "$wid" 2>/dev/null; sleep 1
-xdotool key space
+log="$work/sound.log"
+swing --width 320 --height 200
 record 6 "$work/swing.raw"
 xdotool key Escape
 wait_exit
@@ -34,11 +39,8 @@ under=$(echo "$line" | sed -n 's/.*; \([0-9]*\) underruns;.*/\1/p')
   && ok "clicks heard at most 50 ms after their frames, no underrun ($line)" \
   || bad "clicks heard at most 50 ms after their frames, no underrun ('$line')"
 
-"$bin" --width 320 --height 200 --mute > "$work/muted.log" 2>&1 &
-pid=$!
-wid=$(find_window)
-xdotool windowfocus "$wid" 2>/dev/null; sleep 1
-xdotool key space
+log="$work/muted.log"
+swing --width 320 --height 200 --mute
 record 3 "$work/muted.raw"
 xdotool key m
 record 3 "$work/unmuted.raw"

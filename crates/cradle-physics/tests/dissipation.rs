@@ -3,25 +3,19 @@
 //! grows and is all accounted for, and the damped engine's independence of the
 //! frame rate.
 
-use cradle_physics::hertz::{run_phase, stiffness};
+mod common;
+
+use cradle_physics::hertz::run_phase;
 use cradle_physics::{Cradle, CradleParams, Integrator};
 use proptest::prelude::*;
 
 /// Steel balls of 2 cm radius on 16 cm strings, Hertz contact with dissipative
 /// constant `a` (s) and drag constant `drag` (kg/m).
 fn steel(balls: usize, a: f64, drag: f64) -> CradleParams {
-    let radius = 0.02;
     CradleParams {
-        balls,
-        radius,
-        mass: 7850.0 * 4.0 / 3.0 * std::f64::consts::PI * radius.powi(3),
-        length: 0.16,
-        gap: 0.0,
-        gravity: 9.81,
-        restitution: 1.0,
-        hertz: Some(stiffness(2.0e11, 0.29, radius)),
         dissipation: a,
         drag,
+        ..common::steel(balls)
     }
 }
 

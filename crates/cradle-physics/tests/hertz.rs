@@ -2,6 +2,8 @@
 //! struck chain and its independence of stiffness and impact speed, and frame-rate
 //! independence of the engine in Hertz mode.
 
+mod common;
+
 use cradle_physics::hertz::{run_phase, stiffness};
 use cradle_physics::{Cradle, CradleParams, Integrator};
 
@@ -12,18 +14,10 @@ fn steel(balls: usize, gravity: f64) -> CradleParams {
 
 /// Steel balls of 2 cm radius on strings `length` (m) long.
 fn steel_on(balls: usize, gravity: f64, length: f64) -> CradleParams {
-    let radius = 0.02;
     CradleParams {
-        balls,
-        radius,
-        mass: 7850.0 * 4.0 / 3.0 * std::f64::consts::PI * radius.powi(3),
-        length,
-        gap: 0.0,
         gravity,
-        restitution: 1.0,
-        hertz: Some(stiffness(2.0e11, 0.29, radius)),
-        dissipation: 0.0,
-        drag: 0.0,
+        length,
+        ..common::steel(balls)
     }
 }
 

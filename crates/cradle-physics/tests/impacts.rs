@@ -1,24 +1,17 @@
 //! The impacts the engines report: when, which pair, how fast, where, and for
 //! Hertz contact how long and how hard; the same at any frame rate.
 
-use cradle_physics::hertz::{contact_time, stiffness};
+mod common;
+
+use cradle_physics::hertz::contact_time;
 use cradle_physics::{Cradle, CradleParams, Impact, Integrator};
 
-/// Steel balls of 2 cm radius on 16 cm strings, touching, as the default asset;
-/// ideal impacts unless `hertz`.
+/// The default cradle of `balls` balls; ideal impacts unless `hertz`.
 fn steel(balls: usize, hertz: bool) -> CradleParams {
-    let radius = 0.02;
+    let p = common::steel(balls);
     CradleParams {
-        balls,
-        radius,
-        mass: 7850.0 * 4.0 / 3.0 * std::f64::consts::PI * radius.powi(3),
-        length: 0.16,
-        gap: 0.0,
-        gravity: 9.81,
-        restitution: 1.0,
-        hertz: hertz.then(|| stiffness(2.0e11, 0.29, radius)),
-        dissipation: 0.0,
-        drag: 0.0,
+        hertz: p.hertz.filter(|_| hertz),
+        ..p
     }
 }
 
