@@ -389,12 +389,13 @@ impl GifWriter {
         })
     }
 
-    /// Appends a frame (quantised to 256 colours with `NeuQuant`).
+    /// Appends a frame (quantised to 256 colours with `NeuQuant`, in place:
+    /// no copy of a picture that may be 268 MB).
     ///
     /// # Errors
     /// When encoding fails.
-    pub fn push(&mut self, img: &Image) -> Result<(), WriteError> {
-        let mut rgba = img.rgba.clone();
+    pub fn push(&mut self, img: Image) -> Result<(), WriteError> {
+        let mut rgba = img.rgba;
         let (w, h) = (img.width as u16, img.height as u16);
         let mut frame = gif::Frame::from_rgba_speed(w, h, &mut rgba, 10);
         frame.delay = self.delays.next_delay();

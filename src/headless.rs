@@ -91,14 +91,20 @@ pub fn render(
     let mut world = CradleWorld::new(config);
     reach(&mut world, start);
     let mut track = audio.and_then(|_| output.soundtrack(config, start));
-    // Frames after the first re-trace only what the swing can change.
-    let mut inc = trace::Incremental::new();
+    // Frames after the first re-trace only what the swing can change, up to
+    // 4K: its bookkeeping (what each pixel's rays met) costs about 80 bytes a
+    // pixel, 5 GB at 8192x8192, where a whole frame takes seconds anyway.
+    let pixels = u64::from(config.render.width) * u64::from(config.render.height);
+    let mut inc = (pixels <= INCREMENTAL_PIXELS).then(trace::Incremental::new);
     let mut frame_at = |t: f64, track: &mut Option<Soundtrack>| -> Image {
         world.show_at(t);
         if let Some(track) = track {
             track.hear(world.impacts(), world.scene());
         }
-        pool.install(|| inc.render(world.scene()).clone())
+        match &mut inc {
+            Some(inc) => pool.install(|| inc.render(world.scene()).clone()),
+            None => pool.install(|| trace::render(world.scene())),
+        }
     };
     let mut written = Vec::new();
     match output {
@@ -141,7 +147,7 @@ pub fn render(
             let mut gif = GifWriter::create(path, w, h, *fps)?;
             let progress = crate::bench::progress_bar(u64::from(*frames), "frames");
             for n in 0..*frames {
-                gif.push(&frame_at(start + f64::from(n) / fps, &mut track))?;
+                gif.push(frame_at(start + f64::from(n) / fps, &mut track))?;
                 progress.inc(1);
             }
             progress.finish_and_clear();
@@ -171,28 +177,17 @@ pub fn render(
     Ok(written)
 }
 
+/// The largest picture (pixels) whose sequences are traced incrementally.
+const INCREMENTAL_PIXELS: u64 = 3840 * 2160;
+
 /// One frame of `scene` traced on `pool`, its rows counted on a bar on a
 /// terminal and, where it will take over 10 s (8K at 64 samples), in the log.
 fn traced_with_progress(pool: &rayon::ThreadPool, scene: &trace::Scene) -> Image {
-    use std::sync::atomic::{AtomicU32, Ordering};
-    let passes = if scene.adaptive.is_some() && scene.samples > 1 {
-        2
-    } else {
-        1
-    };
-    let rows = passes * scene.size.1;
-    let done = AtomicU32::new(0);
-    let bar = crate::bench::progress_bar(u64::from(rows), "rows");
+    let bar = crate::bench::progress_bar(1000, "thousandths of the frame");
     let mut estimate = crate::bench::Estimate::new("tracing the frame");
-    let img = std::thread::scope(|s| {
-        let tracing = s.spawn(|| pool.install(|| trace::render_counting(scene, &done)));
-        while !tracing.is_finished() {
-            std::thread::sleep(std::time::Duration::from_millis(200));
-            let n = done.load(Ordering::Relaxed);
-            bar.set_position(u64::from(n));
-            estimate.done(f64::from(n) / f64::from(rows.max(1)));
-        }
-        tracing.join().expect("the tracer does not panic")
+    let img = crate::bench::traced_watching(pool, scene, |done| {
+        bar.set_position((1000.0 * done) as u64);
+        estimate.done(done);
     });
     bar.finish_and_clear();
     img

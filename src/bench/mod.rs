@@ -68,6 +68,32 @@ impl Estimate {
     }
 }
 
+/// One frame of `scene` traced on `pool`, telling `rows` the share of its
+/// rows done (0..=1) every 0.2 s while it traces: a frame of minutes (8K at
+/// 64 samples) can show its progress. The same picture as `trace::render`.
+pub fn traced_watching(
+    pool: &rayon::ThreadPool,
+    scene: &crate::trace::Scene,
+    mut rows: impl FnMut(f64),
+) -> crate::trace::Image {
+    use std::sync::atomic::{AtomicU32, Ordering};
+    let passes = if scene.adaptive.is_some() && scene.samples > 1 {
+        2
+    } else {
+        1
+    };
+    let total = f64::from((passes * scene.size.1).max(1));
+    let done = AtomicU32::new(0);
+    std::thread::scope(|s| {
+        let tracing = s.spawn(|| pool.install(|| crate::trace::render_counting(scene, &done)));
+        while !tracing.is_finished() {
+            std::thread::sleep(std::time::Duration::from_millis(200));
+            rows(f64::from(done.load(Ordering::Relaxed)) / total);
+        }
+        tracing.join().expect("the tracer does not panic")
+    })
+}
+
 /// Median of a non-empty list.
 #[must_use]
 pub fn median(mut xs: Vec<f64>) -> f64 {

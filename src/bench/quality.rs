@@ -120,11 +120,12 @@ pub fn run(
     world.set_running(true);
     world.show_at(0.5);
     let scene = world.scene().clone();
-    let reference = pool.install(|| trace::render(&with(&scene, 64, None, 8)));
     let threshold = config.render.adaptive_threshold as f32;
+    let mut work = Work::new(&scene, threshold, frames);
+    let reference = work.render(&pool, &with(&scene, 64, None, 8));
     let mut rows = Vec::new();
     for depth in DEPTHS {
-        let sixteen = pool.install(|| trace::render(&with(&scene, 16, None, depth)));
+        let sixteen = work.render(&pool, &with(&scene, 16, None, depth));
         for mode in MODES {
             let s = with(
                 &scene,
@@ -138,6 +139,7 @@ pub fn run(
                 let start = Instant::now();
                 img = Some(pool.install(|| trace::render(&s)));
                 times.push(start.elapsed().as_secs_f64() * 1e3);
+                work.rendered(&s);
             }
             let img = img.expect("at least one frame");
             let e = rmse(&img, &reference);
@@ -153,7 +155,77 @@ pub fn run(
             rows.push(row);
         }
     }
+    work.bar.finish_and_clear();
     Ok(rows)
+}
+
+/// The benchmark's renders as shares of its whole work, for a progress bar on
+/// a terminal and an estimate in the log: at 8192x8192 the 64-sample reference
+/// alone takes minutes.
+struct Work {
+    total: f64,
+    done: f64,
+    bar: indicatif::ProgressBar,
+    estimate: super::Estimate,
+}
+
+impl Work {
+    /// The work of the reference, and per depth the 16-sample render and
+    /// `frames` of each mode.
+    fn new(scene: &trace::Scene, threshold: f32, frames: u32) -> Self {
+        let mut total = cost(&with(scene, 64, None, 8));
+        for depth in DEPTHS {
+            total += cost(&with(scene, 16, None, depth));
+            for mode in MODES {
+                let s = with(
+                    scene,
+                    mode.samples,
+                    mode.adaptive.then_some(threshold),
+                    depth,
+                );
+                total += f64::from(frames) * cost(&s);
+            }
+        }
+        Self {
+            total,
+            done: 0.0,
+            bar: super::progress_bar(1000, "thousandths"),
+            estimate: super::Estimate::new("bench render-quality"),
+        }
+    }
+
+    /// Traces `scene`, showing its progress within the whole.
+    fn render(&mut self, pool: &rayon::ThreadPool, scene: &trace::Scene) -> trace::Image {
+        let (before, share) = (self.done, cost(scene) / self.total);
+        let img = super::traced_watching(pool, scene, |rows| self.show(before + rows * share));
+        self.rendered(scene);
+        img
+    }
+
+    /// `scene` was traced (a timed frame traces without watching: no thread
+    /// beside it to disturb the timing).
+    fn rendered(&mut self, scene: &trace::Scene) {
+        self.done += cost(scene) / self.total;
+        self.show(self.done);
+    }
+
+    fn show(&mut self, done: f64) {
+        self.bar.set_position((1000.0 * done.min(1.0)) as u64);
+        self.estimate.done(done);
+    }
+}
+
+/// The rough cost of tracing `scene`: its rows, times the samples a pixel
+/// takes (adaptive: one, and the samples at about 15% of pixels, the edges),
+/// times its bounces.
+fn cost(scene: &trace::Scene) -> f64 {
+    let extra = f64::from(scene.samples.max(1) - 1);
+    let samples = if scene.adaptive.is_some() {
+        1.0 + 0.15 * extra
+    } else {
+        1.0 + extra
+    };
+    f64::from(scene.size.1) * samples * (1.0 + 0.5 * f64::from(scene.max_depth))
 }
 
 /// Draws RMSE against ms per frame, one line per mode through depths 0..=5.
