@@ -224,14 +224,14 @@ fn pictures_appear_whole_or_not_at_all() {
     // An unfinished GIF leaves nothing; a finished one ends with its trailer.
     let gif = dir.join("g.gif");
     let mut w = GifWriter::create(&gif, 4, 2, 30.0).expect("created");
-    w.push(&img).expect("frame");
+    w.push(img.clone()).expect("frame");
     drop(w);
     assert!(
         !gif.exists() && leftovers(&dir).is_empty(),
         "dropped unfinished"
     );
     let mut w = GifWriter::create(&gif, 4, 2, 30.0).expect("created");
-    w.push(&img).expect("frame");
+    w.push(img.clone()).expect("frame");
     w.finish().expect("finished");
     let bytes = std::fs::read(&gif).expect("read");
     assert!(bytes.starts_with(b"GIF89a") && bytes.ends_with(&[0x3b]));
