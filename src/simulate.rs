@@ -65,6 +65,8 @@ struct Sample<'a> {
     theta: &'a [f64],
     omega: &'a [f64],
     energy: f64,
+    /// Total horizontal momentum of the balls (kg m/s).
+    momentum: f64,
     collisions: u64,
     /// With dissipation: energy lost so far in contacts and to drag (J).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -261,6 +263,7 @@ pub fn simulate(
             theta: &s.theta,
             omega: &s.omega,
             energy: e,
+            momentum: p.momentum(&s.theta, &s.omega),
             collisions: s.collisions,
             lost: damped.then_some(s.lost),
         };

@@ -146,7 +146,7 @@ impl ApplicationHandler<UserEvent> for App {
         // The panel sees events first; what it takes (a click on a slider, typing
         // in a field) is not ours. Keys reach it only while a field is edited,
         // and Tab never does (`Panel::event`).
-        if self.session.panel_open() && surface.panel_event(&event) {
+        if self.session.egui_open() && surface.panel_event(&event) {
             surface.request_redraw();
             return;
         }
@@ -174,7 +174,9 @@ impl ApplicationHandler<UserEvent> for App {
                 if is_synthetic || event.state != ElementState::Pressed || event.repeat {
                     return;
                 }
-                let Some(action) = keys::action(&event.logical_key, self.ctrl) else {
+                let Some(action) =
+                    keys::action(&event.logical_key, self.ctrl, self.mouse.shift_held())
+                else {
                     return;
                 };
                 match self.session.act(action) {
@@ -228,7 +230,7 @@ impl ApplicationHandler<UserEvent> for App {
                 if surface.visible() {
                     self.session.step(std::time::Instant::now());
                 }
-                let panel = self.session.panel_open();
+                let panel = self.session.egui_open();
                 if panel {
                     surface.prepare_panel(&mut self.session);
                 }

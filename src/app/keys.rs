@@ -29,13 +29,17 @@ pub enum Action {
     Undo,
     /// M: mute or unmute the clicks.
     Mute,
+    /// G: the graphs window on or off.
+    Graphs,
+    /// Shift+G: the graphs' series as CSV.
+    GraphsCsv,
     /// Escape: quit.
     Quit,
 }
 
-/// The action of a pressed key, with Ctrl held or not, if it has one.
+/// The action of a pressed key, with Ctrl and Shift held or not, if it has one.
 #[must_use]
-pub fn action(key: &Key, ctrl: bool) -> Option<Action> {
+pub fn action(key: &Key, ctrl: bool, shift: bool) -> Option<Action> {
     if ctrl {
         return match key {
             Key::Character(c) if c.eq_ignore_ascii_case("z") => Some(Action::Undo),
@@ -60,6 +64,8 @@ pub fn action(key: &Key, ctrl: bool) -> Option<Action> {
             "n" => Some(Action::Step),
             "c" => Some(Action::HomeView),
             "m" => Some(Action::Mute),
+            "g" if shift => Some(Action::GraphsCsv),
+            "g" => Some(Action::Graphs),
             " " => Some(Action::TogglePause),
             _ => None,
         },
@@ -77,14 +83,14 @@ pub const HELP: [(&str, &str); 18] = [
     (", / .", "half / twice time rate"),
     ("N", "one frame while paused"),
     ("right-drag", "turn the view"),
-    ("wheel", "zoom in / out"),
     ("middle-drag", "move the view"),
     ("shift+right", "move the view, too"),
-    ("C", "reset the view"),
+    ("wheel / C", "zoom / reset the view"),
     ("TAB", "control panel, presets"),
     ("CTRL+Z", "undo a panel change"),
     ("S", "save a screenshot"),
     ("M", "mute / unmute the clicks"),
+    ("G / SHIFT+G", "graphs / graphs as CSV"),
     ("H or F1", "help / no HUD / status"),
     ("ESC", "quit (in a field: leave)"),
 ];
@@ -97,7 +103,7 @@ mod tests {
     #[test]
     fn every_documented_key_has_its_action() {
         let ch = |c: &str| Key::Character(SmolStr::new(c));
-        let action = |k: &Key| action(k, false);
+        let action = |k: &Key| action(k, false, false);
         assert_eq!(
             action(&Key::Named(NamedKey::Space)),
             Some(Action::TogglePause)
@@ -133,6 +139,11 @@ mod tests {
         assert_eq!(action(&ch("n")), Some(Action::Step));
         assert_eq!(action(&ch("c")), Some(Action::HomeView));
         assert_eq!(action(&ch("m")), Some(Action::Mute));
+        assert_eq!(action(&ch("g")), Some(Action::Graphs));
+        assert_eq!(
+            super::action(&ch("G"), false, true),
+            Some(Action::GraphsCsv)
+        );
         assert_eq!(action(&ch("x")), None);
         assert_eq!(action(&Key::Named(NamedKey::Tab)), Some(Action::Panel));
     }
@@ -140,9 +151,9 @@ mod tests {
     #[test]
     fn ctrl_z_undoes_and_ctrl_leaves_the_other_keys_alone() {
         let ch = |c: &str| Key::Character(SmolStr::new(c));
-        assert_eq!(action(&ch("z"), true), Some(Action::Undo));
-        assert_eq!(action(&ch("Z"), true), Some(Action::Undo));
-        assert_eq!(action(&ch("z"), false), None);
-        assert_eq!(action(&ch("s"), true), None, "Ctrl+S is not S");
+        assert_eq!(action(&ch("z"), true, false), Some(Action::Undo));
+        assert_eq!(action(&ch("Z"), true, false), Some(Action::Undo));
+        assert_eq!(action(&ch("z"), false, false), None);
+        assert_eq!(action(&ch("s"), true, false), None, "Ctrl+S is not S");
     }
 }

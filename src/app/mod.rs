@@ -6,7 +6,7 @@
 //! - `surface`: the window and the pixels framebuffer: resize, occlusion, present
 //!   with the HUD ([`hud`]) drawn over the picture.
 //! - `panel` (Tab): the egui control panel over the picture, editing the
-//!   session's `controls`.
+//!   session's `controls`; `graphs` (G): plots of what the physics records.
 //! - `handler`: winit's event handler between the two.
 //! - `keys`, `mouse`, `orbit`, `drag`: the key map, drags and wheel, the
 //!   user's view, dragging balls.
@@ -22,6 +22,7 @@
 pub mod audible;
 pub mod controls;
 pub mod drag;
+mod graphs;
 mod handler;
 pub mod hud;
 pub mod keys;

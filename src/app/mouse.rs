@@ -40,6 +40,12 @@ impl Mouse {
         self.shift = held;
     }
 
+    /// Whether Shift is held (Shift+G).
+    #[must_use]
+    pub fn shift_held(&self) -> bool {
+        self.shift
+    }
+
     /// The cursor moved to `(x, y)`: the view change a drag makes, if any.
     pub fn moved(&mut self, x: f64, y: f64) -> Option<ViewChange> {
         let last = self.at.replace((x, y))?;

@@ -4,6 +4,7 @@
 //! the session's rule, not the panel's.
 
 use super::controls::Controls;
+use super::graphs::{Graphs, graphs_ui};
 use super::presets::PRESETS;
 use super::session::Session;
 use crate::config::{ContactModel, ranges};
@@ -25,6 +26,8 @@ pub struct Panel {
     /// A text field (a slider's typed value) had the keyboard at the end of
     /// the last frame: only then do keys go to the panel.
     editing: bool,
+    /// The graphs window's own state.
+    graphs: Graphs,
 }
 
 impl Panel {
@@ -57,6 +60,7 @@ impl Panel {
             paint_jobs: Vec::new(),
             textures: TexturesDelta::default(),
             editing: false,
+            graphs: Graphs::default(),
         }
     }
 
@@ -86,10 +90,11 @@ impl Panel {
         }
     }
 
-    /// Runs one egui frame over `session`: shows its settings and energies, and
-    /// applies what the user changed. Returns whether egui wants another frame
-    /// soon (a new window is laid out on its second frame), and the panel's
-    /// left edge in window pixels.
+    /// Runs one egui frame over `session`: shows its settings and energies
+    /// (the panel open) and its graphs (the graphs open), and applies what the
+    /// user changed. Returns whether egui wants another frame soon (a new window
+    /// is laid out on its second frame), and the panel's left edge in window
+    /// pixels (`None` with the panel closed).
     pub fn prepare(&mut self, window: &Window, session: &mut Session) -> (bool, Option<f32>) {
         let input = self.state.take_egui_input(window);
         let mut controls = session.controls();
@@ -99,16 +104,27 @@ impl Panel {
         let mut request = None;
         let mut left = None;
         let mut muted = session.muted();
+        let (panel, mut graphs) = (session.panel_open(), session.graphs_open());
+        let graphs_state = &mut self.graphs;
+        let recording = session.recording();
         let output = self.ctx.run_ui(input, |ui| {
-            let shown = Shown {
-                custom: custom.as_deref(),
-                shares: &shares,
-                energy,
-            };
-            (request, left) = panel_ui(ui.ctx(), &mut controls, &mut muted, &shown);
+            if panel {
+                let shown = Shown {
+                    custom: custom.as_deref(),
+                    shares: &shares,
+                    energy,
+                };
+                (request, left) = panel_ui(ui.ctx(), &mut controls, &mut muted, &shown);
+            }
+            if graphs {
+                graphs_ui(ui.ctx(), recording, graphs_state, &mut graphs);
+            }
         });
         if muted != session.muted() {
             session.act(crate::app::keys::Action::Mute);
+        }
+        if graphs != session.graphs_open() {
+            session.act(crate::app::keys::Action::Graphs);
         }
         if controls != before {
             session.apply_controls(&controls);

@@ -41,9 +41,15 @@ pub fn save(
 /// is in use: an existing file is never replaced.
 #[must_use]
 pub fn free_name(stamp: &str, taken: impl Fn(&str) -> bool) -> String {
+    free_named(stamp, "png", taken)
+}
+
+/// `newtons-cradle-STAMP.EXT`, numbered as [`free_name`] does.
+#[must_use]
+pub fn free_named(stamp: &str, ext: &str, taken: impl Fn(&str) -> bool) -> String {
     let base = format!("newtons-cradle-{stamp}");
     (1..=u32::MAX)
-        .map(|k| numbered(&base, k, "png"))
+        .map(|k| numbered(&base, k, ext))
         .find(|n| !taken(n))
         .expect("some numbered name is free")
 }

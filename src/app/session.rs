@@ -244,6 +244,11 @@ impl Session {
                     self.retrace = true;
                 }
             }
+            Action::Graphs => {
+                let on = !self.graphs_open();
+                self.world.set_recording(on);
+            }
+            Action::GraphsCsv => self.save_graphs(),
             Action::Mute => {
                 let said = self.hearing.toggle_mute();
                 self.notify(said, notice::GOOD);
@@ -430,6 +435,52 @@ impl Session {
                 self.notify(format!("setup not saved: {e}"), notice::BAD);
             }
         }
+    }
+
+    /// Shift+G: writes what the graphs recorded as CSV,
+    /// `newtons-cradle-YYYYMMDD-HHMMSS.csv` in the working directory (never
+    /// over a file), and says where.
+    pub fn save_graphs(&mut self) {
+        let rec = self.world.recording();
+        if rec.samples.is_empty() {
+            self.notify(
+                "nothing recorded: open the graphs (G) while it swings",
+                notice::BAD,
+            );
+            return;
+        }
+        let text = crate::scene::record::csv(rec);
+        let stamp = super::screenshot::stamp_now();
+        let name =
+            super::screenshot::free_named(&stamp, "csv", |n| std::path::Path::new(n).exists());
+        match crate::export::write_all(std::path::Path::new(&name), text.as_bytes()) {
+            Ok(()) => {
+                tracing::info!("saved graphs {name}");
+                self.notify(format!("saved graphs {name}"), notice::GOOD);
+            }
+            Err(e) => {
+                tracing::error!("graphs not saved: {e}");
+                self.notify(format!("graphs not saved: {e}"), notice::BAD);
+            }
+        }
+    }
+
+    /// Whether the graphs window is open (the physics records for it).
+    #[must_use]
+    pub fn graphs_open(&self) -> bool {
+        self.world.recording().on
+    }
+
+    /// What the graphs read.
+    #[must_use]
+    pub fn recording(&self) -> &crate::scene::record::Recording {
+        self.world.recording()
+    }
+
+    /// Whether egui draws anything: the panel or the graphs.
+    #[must_use]
+    pub fn egui_open(&self) -> bool {
+        self.panel || self.graphs_open()
     }
 
     /// Keeps the state before a change of the panel's for Ctrl+Z.

@@ -1,10 +1,12 @@
 //! The ECS world: components (`components`), spawning from a config (`spawn`,
 //! with the tracer's camera, lights and settings from `view`), the frame's
-//! systems (`systems`), and [`CradleWorld`], which owns the world and the frame
-//! schedule of chained sets Input -> Physics -> Extract.
+//! systems (`systems`; `record`: what the graphs read), and [`CradleWorld`],
+//! which owns the world and the frame schedule of chained sets Input ->
+//! Physics -> Extract.
 
 pub mod components;
 pub mod long_row;
+pub mod record;
 pub mod spawn;
 pub mod systems;
 pub mod view;
@@ -36,6 +38,7 @@ pub fn frame_schedule() -> Schedule {
             systems::step_physics,
             systems::place_balls,
             systems::place_strands,
+            record::record,
         )
             .chain()
             .in_set(FrameSet::Physics),
@@ -164,6 +167,22 @@ impl CradleWorld {
     #[must_use]
     pub fn state(&self) -> SimState {
         *self.world.resource::<SimState>()
+    }
+
+    /// Records the physics for the graphs from the next frame on, or stops
+    /// (and forgets what was recorded).
+    pub fn set_recording(&mut self, on: bool) {
+        let mut rec = self.world.resource_mut::<record::Recording>();
+        if !on {
+            rec.clear();
+        }
+        rec.on = on;
+    }
+
+    /// What the graphs read.
+    #[must_use]
+    pub fn recording(&self) -> &record::Recording {
+        self.world.resource::<record::Recording>()
     }
 
     /// The impacts of the last frame (none while paused).

@@ -81,6 +81,8 @@ pub fn build_world(config: &Config) -> World {
     let mut world = World::new();
     spawn_entities(&mut world, config);
     insert_resources(&mut world, config);
+    // Kept across respawns: the graphs stay open, their record starts again.
+    world.insert_resource(super::record::Recording::default());
     world
 }
 

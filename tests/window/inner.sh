@@ -8,7 +8,8 @@
 # scene, S saves unique screenshots, Escape exits 0, a window destroyed
 # from outside exits 0, and heavy settings (200 balls of the realistic cradle,
 # 4K at 64 samples) still answer Escape; and the sound (sound.sh): clicks at
-# the swing's rhythm, silence when muted, a silent window without a server.
+# the swing's rhythm, silence when muted, a silent window without a server;
+# and the graphs (graphs.sh): G opens them, Shift+G saves a CSV.
 set -uo pipefail
 bin="$1"
 work="$(mktemp -d)"
@@ -189,6 +190,8 @@ code=$?
 
 # shellcheck source=sound.sh
 . "$(dirname "$0")/sound.sh"
+# shellcheck source=graphs.sh
+. "$(dirname "$0")/graphs.sh"
 
 [ "$fail" -eq 0 ] || { echo "--- app log"; cat "$work/app.log"; }
 echo "window: $pass passed, $fail failed"

@@ -119,6 +119,24 @@ impl CradleParams {
         0.5 * self.inertia() * omega * omega + 2.0 * self.mass * self.gravity * self.length * s * s
     }
 
+    /// Horizontal momentum of one ball (kg m/s): its mass times its centre's
+    /// horizontal speed, `m L cos(theta) omega`.
+    #[must_use]
+    pub fn ball_momentum(&self, theta: f64, omega: f64) -> f64 {
+        self.mass * self.length * theta.cos() * omega
+    }
+
+    /// Total horizontal momentum of the balls (kg m/s): what an impact passes
+    /// on and the strings change as the balls swing.
+    #[must_use]
+    pub fn momentum(&self, theta: &[f64], omega: &[f64]) -> f64 {
+        theta
+            .iter()
+            .zip(omega)
+            .map(|(&t, &w)| self.ball_momentum(t, w))
+            .sum()
+    }
+
     /// Total energy of the cradle (J): the balls' energies plus, with Hertz contact,
     /// the elastic energy `2/5 k delta^2.5` of every overlapping pair.
     #[must_use]

@@ -102,9 +102,11 @@ impl Session {
                 format!("energy err {err:+.1e}")
             };
             let muted = if self.muted() { "  MUTED" } else { "" };
+            let snap = &cradle.snapshot;
+            let momentum = cradle.cradle.params().momentum(&snap.theta, &snap.omega);
             lines.push((
                 format!(
-                    "balls {}  lifted {}  {}  {energy}{muted}",
+                    "balls {}  lifted {}  {}  {energy}  p {momentum:+.3} kg m/s{muted}",
                     c.cradle.balls,
                     self.lifted_text(),
                     c.contact.model.name()
