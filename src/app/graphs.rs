@@ -11,7 +11,7 @@ use egui_plot::{Legend, Line, Plot, PlotPoints};
 
 /// At most this many points per line: more would not show at the window's
 /// width and would cost the frame its time.
-const POINTS: usize = 600;
+const POINTS: usize = 300;
 
 /// At most this many balls get a line of their own (a long row's first).
 const BALLS: usize = 12;
@@ -129,7 +129,7 @@ fn energy(ui: &mut egui::Ui, samples: &[&Sample], p: &CradleParams, n: usize) {
                 format!("+ ball {}", k + 1)
             };
             let l = line(name, samples, |s| s.energy[..=k].iter().sum());
-            pu.line(l.fill(0.0));
+            pu.line(l);
         }
         if p.dissipative() {
             pu.line(line("left + lost in contacts".into(), samples, |s| {

@@ -97,6 +97,40 @@ impl App {
         event_loop.exit();
     }
 
+    /// Steps and presents a frame: the session's picture, the HUD, egui's
+    /// windows; then the clicks of the impacts it shows.
+    fn present(&mut self, event_loop: &ActiveEventLoop) {
+        let Some(surface) = &mut self.surface else {
+            return;
+        };
+        if surface.visible() {
+            self.session.step(std::time::Instant::now());
+        }
+        let panel = self.session.egui_open();
+        let t0 = std::time::Instant::now();
+        if panel {
+            surface.prepare_panel(&mut self.session);
+        }
+        let prep = t0.elapsed();
+        let overlay = self.session.overlay(std::time::Instant::now());
+        surface.upload(self.session.image(), self.session.changes(), &overlay);
+        // The next frame traces while this one is drawn.
+        self.session.launch();
+        let t1 = std::time::Instant::now();
+        if let Err(e) = surface.draw(panel) {
+            self.fail(event_loop, e);
+        }
+        // The main thread's cost of the egui frame and of presenting:
+        // `RUST_LOG=info,frame_cost=trace`.
+        tracing::trace!(
+            target: "frame_cost",
+            "egui {:.3} ms, present {:.3} ms",
+            prep.as_secs_f64() * 1e3,
+            t1.elapsed().as_secs_f64() * 1e3
+        );
+        self.hear(std::time::Instant::now());
+    }
+
     fn redraw(&mut self) {
         if let Some(s) = &self.surface {
             s.request_redraw();
@@ -226,23 +260,7 @@ impl ApplicationHandler<UserEvent> for App {
                 self.session.view(Mouse::wheel(delta));
                 surface.request_redraw();
             }
-            WindowEvent::RedrawRequested => {
-                if surface.visible() {
-                    self.session.step(std::time::Instant::now());
-                }
-                let panel = self.session.egui_open();
-                if panel {
-                    surface.prepare_panel(&mut self.session);
-                }
-                let overlay = self.session.overlay(std::time::Instant::now());
-                surface.upload(self.session.image(), self.session.changes(), &overlay);
-                // The next frame traces while this one is drawn.
-                self.session.launch();
-                if let Err(e) = surface.draw(panel) {
-                    self.fail(event_loop, e);
-                }
-                self.hear(std::time::Instant::now());
-            }
+            WindowEvent::RedrawRequested => self.present(event_loop),
             _ => {}
         }
     }

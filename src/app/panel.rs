@@ -97,6 +97,10 @@ impl Panel {
     /// pixels (`None` with the panel closed).
     pub fn prepare(&mut self, window: &Window, session: &mut Session) -> (bool, Option<f32>) {
         let input = self.state.take_egui_input(window);
+        // The plots' lines, anti-aliased by feathering, cost a software
+        // renderer (lavapipe) 5 ms a frame: the graphs draw them without it.
+        let plain = session.graphs_open();
+        self.ctx.tessellation_options_mut(|o| o.feathering = !plain);
         let mut controls = session.controls();
         let before = controls.clone();
         let (shares, energy) = session.energies();
