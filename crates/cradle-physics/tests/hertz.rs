@@ -197,16 +197,11 @@ fn fixed_step_integrators_run_hertz_contacts_too() {
 fn tiny_stiff(balls: usize, dissipation: f64) -> CradleParams {
     let r = 1e-4;
     CradleParams {
-        balls,
         radius: r,
         mass: 7850.0 * 4.0 / 3.0 * std::f64::consts::PI * r.powi(3),
-        length: 0.16,
-        gap: 0.0,
-        gravity: 9.81,
-        restitution: 1.0,
         hertz: Some(stiffness(1e13, 0.29, r)),
         dissipation,
-        drag: 0.0,
+        ..common::steel(balls)
     }
 }
 
