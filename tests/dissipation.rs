@@ -26,6 +26,7 @@ fn zero_dissipation_and_drag_print_the_elastic_hertz_json_byte_for_byte() {
     // dissipation keys existed and written again when the exact engine began
     // to count time from an epoch at each event: every angle and speed moved
     // by at most 3.6e-11 (the Hertz phases' tolerance), the same 64 contacts.
+    // The samples' momentum was added since: every other byte is as it was.
     let o = run(&[
         "simulate",
         "--contact",
