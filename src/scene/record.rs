@@ -40,22 +40,19 @@ impl Sample {
     pub fn of(state: &CradleState) -> Self {
         let p = state.cradle.params();
         let s = &state.snapshot;
+        let per_ball = |f: fn(&CradleParams, f64, f64) -> f64| {
+            s.theta
+                .iter()
+                .zip(&s.omega)
+                .map(|(&t, &w)| f(p, t, w))
+                .collect()
+        };
         Self {
             t: s.t,
             theta: s.theta.clone(),
             omega: s.omega.clone(),
-            energy: s
-                .theta
-                .iter()
-                .zip(&s.omega)
-                .map(|(&t, &w)| p.ball_energy(t, w))
-                .collect(),
-            momentum: s
-                .theta
-                .iter()
-                .zip(&s.omega)
-                .map(|(&t, &w)| p.ball_momentum(t, w))
-                .collect(),
+            energy: per_ball(CradleParams::ball_energy),
+            momentum: per_ball(CradleParams::ball_momentum),
             total: state.cradle.energy(s),
             error: state.cradle.energy_rel_error(s),
             lost: s.lost,

@@ -221,7 +221,7 @@ fn play(mut device: Box<dyn Device>, rx: &Receiver<Msg>, epoch: Instant, volume:
     let mut buf: Vec<f32> = Vec::new();
     let mut pcm: Vec<i16> = Vec::new();
     let mut due: Vec<(Click, f64)> = Vec::new();
-    loop {
+    'playing: loop {
         let (frames, heard_at) = match device.wanted(epoch) {
             Ok(w) => w,
             Err(e) => {
@@ -240,12 +240,7 @@ fn play(mut device: Box<dyn Device>, rx: &Receiver<Msg>, epoch: Instant, volume:
                     due.clear();
                     mixer.clear();
                 }
-                Ok(Msg::Stop) | Err(mpsc::TryRecvError::Disconnected) => {
-                    stats.underruns = device.underruns();
-                    stats.cpu = cpu.elapsed().as_secs_f64();
-                    stats.wall = epoch.elapsed().as_secs_f64();
-                    return stats;
-                }
+                Ok(Msg::Stop) | Err(mpsc::TryRecvError::Disconnected) => break 'playing,
                 Err(mpsc::TryRecvError::Empty) => break,
             }
         }
