@@ -86,11 +86,14 @@ struct ImpactLine {
     /// the pivots.
     x: f64,
     y: f64,
-    /// Hertz contact: how long the pair touched (s) and its peak force (N).
+    /// Hertz contact: how long the pair touched (s), its peak force (N) and
+    /// the impulse it passed (N s).
     #[serde(skip_serializing_if = "Option::is_none")]
     contact_s: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
     peak_force: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    impulse: Option<f64>,
 }
 
 impl From<&crate::physics::Impact> for ImpactLine {
@@ -103,6 +106,7 @@ impl From<&crate::physics::Impact> for ImpactLine {
             y: i.at.1,
             contact_s: i.contact.map(|c| c.duration),
             peak_force: i.contact.map(|c| c.peak_force),
+            impulse: i.contact.map(|c| c.impulse),
         }
     }
 }

@@ -249,6 +249,7 @@ mod tests {
         i.contact = Some(Contact {
             duration: 2e-4,
             peak_force: 1000.0,
+            impulse: 0.13,
         });
         assert_eq!(steel().pulse(&i), Some((1000.0, 2e-4)));
     }

@@ -4,7 +4,7 @@
 use super::contact::Resolution;
 use super::damped::DampedEngine;
 use super::exact::ExactEngine;
-use super::impacts::{Impact, ImpactLog};
+use super::impacts::{Course, Impact, ImpactLog};
 use super::params::{CradleParams, Integrator, REST_FRACTION, lifted_start};
 use super::stepped::SteppedEngine;
 
@@ -134,7 +134,31 @@ impl Cradle {
     /// Keeps the impacts found from now on, for [`Self::take_impacts`]: the sound
     /// reads them. Off by default, so that a run that never takes them keeps none.
     pub fn record_impacts(&mut self) {
-        self.log().record();
+        match &mut self.engine {
+            Engine::Damped(e) => e.record_impacts(),
+            _ => self.log().record(),
+        }
+    }
+
+    /// With impacts kept, keeps their courses too (for [`Self::take_courses`]),
+    /// or stops: a Hertz contact's force curve, an ideal impact's velocities.
+    pub fn record_courses(&mut self, on: bool) {
+        self.log().record_courses(on);
+    }
+
+    /// True while impacts' courses are kept.
+    #[must_use]
+    pub fn recording_courses(&self) -> bool {
+        match &self.engine {
+            Engine::Exact(e) => e.log().recording_courses(),
+            Engine::Damped(e) => e.log().recording_courses(),
+            Engine::Stepped(e) => e.log().recording_courses(),
+        }
+    }
+
+    /// The courses of the impacts up to time `t` (s), as [`Self::take_impacts`].
+    pub fn take_courses(&mut self, t: f64) -> Vec<Course> {
+        self.log().take_courses_until(t)
     }
 
     /// The impacts up to time `t` (s) found by the snapshots so far, earliest

@@ -56,7 +56,7 @@ impl DampedEngine {
         scale[n..2 * n].fill(TOL * top.max(floor));
         // The energy lost to TOL of the energy in play (see `hertz`).
         let in_play = 0.5 * params.inertia() * top.max(floor).powi(2);
-        scale[2 * n..].fill(TOL * in_play);
+        row.scale_extra(&mut scale, TOL * in_play);
         let touching = (0..n.saturating_sub(1))
             .map(|a| row.overlap(theta, a) > 0.0)
             .collect();
@@ -73,6 +73,24 @@ impl DampedEngine {
             impacts: ImpactLog::default(),
             watch: Watch::new(n.saturating_sub(1)),
         }
+    }
+
+    /// The row's system, with the impulses when impacts are kept.
+    fn row(&self) -> Row<'_> {
+        let n = self.touching.len() + 1;
+        Row::new(&self.params, self.k, n).with_impulses(self.impacts.recording())
+    }
+
+    /// Keeps the contacts found from now on: the state carries each pair's
+    /// impulse from here (the steps are the same).
+    pub fn record_impacts(&mut self) {
+        if self.impacts.recording() {
+            return;
+        }
+        self.impacts.record();
+        let len = self.row().len();
+        self.y.resize(len, 0.0);
+        self.scale.resize(len, f64::INFINITY);
     }
 
     /// The longest step (s): a fraction of a swing, well inside the method's
@@ -152,7 +170,7 @@ impl DampedEngine {
     pub fn advance_until(&mut self, t: f64, deadline: Option<std::time::Instant>) -> f64 {
         let n = self.touching.len() + 1;
         let params = self.params;
-        let row = Row::new(&params, self.k, n);
+        let row = Row::new(&params, self.k, n).with_impulses(self.impacts.recording());
         let mut k_buf: [Vec<f64>; 7] = std::array::from_fn(|_| vec![0.0; row.len()]);
         while !self.stuck && self.t < t {
             if deadline.is_some_and(|d| std::time::Instant::now() >= d) {
@@ -177,9 +195,7 @@ impl DampedEngine {
                 self.contacts += u64::from(now && !*was);
                 *was = now;
             }
-            let state = (&self.y[..n], &self.y[n..2 * n]);
-            self.watch
-                .step(&params, self.k, self.t, state, &mut self.impacts);
+            self.watch.step(&row, self.t, &self.y, &mut self.impacts);
         }
         t
     }
@@ -189,10 +205,16 @@ impl DampedEngine {
         &mut self.impacts
     }
 
+    /// The impacts found so far, to read.
+    #[must_use]
+    pub fn log(&self) -> &ImpactLog {
+        &self.impacts
+    }
+
     /// The state at `t`: one shortened step from the last step point.
     fn state_now(&self, t: f64) -> (Vec<f64>, Vec<f64>, [f64; 2]) {
         let n = self.touching.len() + 1;
-        let row = Row::new(&self.params, self.k, n);
+        let row = self.row();
         let mut k_buf: [Vec<f64>; 7] = std::array::from_fn(|_| vec![0.0; row.len()]);
         let y = if self.stuck || t <= self.t {
             self.y.clone()

@@ -23,7 +23,7 @@
 use super::contact::{self, Resolution};
 use super::flight::Flight;
 use super::hertz::{self, PhaseEnd};
-use super::impacts::{Impact, ImpactLog, Watch};
+use super::impacts::{ImpactLog, Watch};
 use super::params::CradleParams;
 use super::roots::{falling_root, rising_root};
 
@@ -394,13 +394,11 @@ impl ExactEngine {
             self.run_segment(te, th, om);
             return;
         }
-        let before = th.clone();
+        let before = (th.clone(), om.clone());
         let out = contact::resolve(&self.params, &self.resolution, &mut th, &mut om, a);
-        for &(pair, speed) in &out.hits {
-            let at = self.epoch + te;
-            self.impacts
-                .push(Impact::between(&self.params, at, pair, &before, speed));
-        }
+        let motion = (before.0.as_slice(), before.1.as_slice());
+        self.impacts
+            .push_resolved(&self.params, self.epoch + te, motion, &om, &out.hits);
         self.collisions += out.impacts;
         self.events += 1;
         self.t_event = te;
@@ -447,6 +445,12 @@ impl ExactEngine {
     /// The impacts found so far, for the ones who read them.
     pub fn impacts(&mut self) -> &mut ImpactLog {
         &mut self.impacts
+    }
+
+    /// The impacts found so far, to read.
+    #[must_use]
+    pub fn log(&self) -> &ImpactLog {
+        &self.impacts
     }
 
     /// Impacts so far (pairwise impulses; resting contacts excluded).

@@ -103,7 +103,8 @@ pub(crate) fn run_reported(
     mut report: Option<Report<'_>>,
 ) -> PhaseEnd {
     let n = theta.len();
-    let sys = Row::new(p, k, n);
+    let impulses = report.as_ref().is_some_and(|r| r.log.recording());
+    let sys = Row::new(p, k, n).with_impulses(impulses);
     let mut y = sys.state(theta, omega);
     // Error scales: positions to TOL radii, speeds to TOL of the fastest ball, or of
     // the speed gravity gives over the contact time when everything is at rest.
@@ -115,7 +116,7 @@ pub(crate) fn run_reported(
     // as sqrt(overlap) from a contact's start, which the state's own error
     // control alone leaves to the coarser steps there.
     let in_play = 0.5 * p.inertia() * w_max.max(w_floor).powi(2);
-    scale[2 * n..].fill(TOL * in_play);
+    sys.scale_extra(&mut scale, TOL * in_play);
     // First step: a hundredth of the time to close one radius's thousandth.
     let mut h = (1e-5 * p.radius / (p.length * w_max.max(w_floor))).min(1e-3 / p.w0());
     let mut t = t0;
@@ -135,7 +136,8 @@ pub(crate) fn run_reported(
     };
     let deriv = |y: &[f64], out: &mut [f64]| sys.deriv(y, out);
     if let Some(r) = report.as_mut() {
-        r.watch.begin(p, r.epoch + t0, theta, omega);
+        let curves = r.log.recording_courses();
+        r.watch.begin(&sys, r.epoch + t0, &y, curves);
     }
     let mut steps = 0;
     loop {
@@ -158,6 +160,10 @@ pub(crate) fn run_reported(
         }
         if t + h > stop {
             let (ys, _) = dopri::step(&deriv, &y, stop - t, &scale, &mut k_buf);
+            // A fixed-step engine goes on from here: its contacts see this point.
+            if let Some(r) = report.as_mut() {
+                r.watch.step(&sys, r.epoch + stop, &ys, r.log);
+            }
             return end(stop, &ys, false, contacts);
         }
         if t + h == t {
@@ -173,8 +179,7 @@ pub(crate) fn run_reported(
         y = y1;
         steps += 1;
         if let Some(r) = report.as_mut() {
-            r.watch
-                .step(p, k, r.epoch + t, (&y[..n], &y[n..2 * n]), r.log);
+            r.watch.step(&sys, r.epoch + t, &y, r.log);
         }
         for (a, was) in touching.iter_mut().enumerate() {
             let now = overlapping(&y, a);

@@ -28,5 +28,5 @@ pub mod stepped;
 
 pub use cradle::{Cradle, Snapshot};
 pub use flight::{Flight, period_ratio};
-pub use impacts::{Contact, Impact};
+pub use impacts::{Contact, Course, Impact};
 pub use params::{CradleParams, Integrator};

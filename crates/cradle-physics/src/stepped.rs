@@ -9,7 +9,7 @@
 
 use super::contact::{self, Resolution};
 use super::hertz;
-use super::impacts::{Impact, ImpactLog, Watch};
+use super::impacts::{ImpactLog, Watch};
 use super::params::{CradleParams, Integrator};
 
 /// Bisection steps locating an impact inside a step: 2^-52 of a step.
@@ -212,14 +212,13 @@ impl SteppedEngine {
                 }
                 continue;
             }
-            let before = tc.clone();
+            let before = (tc.clone(), wc.clone());
             let out = contact::resolve(&self.params, &self.resolution, &mut tc, &mut wc, first);
             impacts += out.impacts;
             if let Some(f) = found.as_mut() {
-                for &(pair, speed) in &out.hits {
-                    let impact = Impact::between(&self.params, f.t, pair, &before, speed);
-                    f.log.push(impact);
-                }
+                let motion = (before.0.as_slice(), before.1.as_slice());
+                f.log
+                    .push_resolved(&self.params, f.t, motion, &wc, &out.hits);
             }
             *theta = tc;
             *omega = wc;
@@ -281,6 +280,12 @@ impl SteppedEngine {
     /// The impacts found on the committed grid, for the ones who read them.
     pub fn impacts(&mut self) -> &mut ImpactLog {
         &mut self.impacts
+    }
+
+    /// The impacts found so far, to read.
+    #[must_use]
+    pub fn log(&self) -> &ImpactLog {
+        &self.impacts
     }
 
     /// Impacts so far on the committed grid.
