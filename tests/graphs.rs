@@ -3,6 +3,7 @@
 //! both show.
 
 use newtons_cradle::config::{Config, ContactModel};
+use newtons_cradle::physics::Course;
 use newtons_cradle::scene::CradleWorld;
 use newtons_cradle::scene::record::{SPAN, csv};
 use serde_json::Value;
@@ -112,6 +113,60 @@ fn the_graphs_keep_their_span_forget_another_cradle_and_record_nothing_closed() 
     world.respawn(&config);
     world.show_at(0.1);
     assert_eq!(world.recording().samples.len(), 1);
+}
+
+#[test]
+fn the_last_impact_shows_its_course_while_the_graphs_are_open() {
+    for hertz in [false, true] {
+        let mut config = Config::default();
+        if hertz {
+            config.contact.model = ContactModel::Hertz;
+        }
+        let p = config.cradle_params();
+        let v = p.release_speed(config.start.angle_deg.to_radians());
+        let mut world = CradleWorld::new(&config);
+        world.set_recording(true);
+        // Past the first strike (a quarter period), before the second.
+        for n in 1..=30 {
+            world.show_at(f64::from(n) / 60.0);
+        }
+        let strike = &world.recording().strike;
+        if hertz {
+            // The pulse runs down the chain: one force curve per pair, each
+            // rising from the first touch and back to 0, passing about the
+            // striker's momentum m v on (the chain's pairs pass a little more
+            // or less, 20% allows for it).
+            let pairs: Vec<usize> = strike
+                .iter()
+                .map(|c| match c {
+                    Course::Force { impact, curve } => {
+                        assert!(curve.len() > 20 && curve.iter().all(|&(_, f)| f >= 0.0));
+                        assert!(curve.iter().any(|&(_, f)| f > 100.0), "{curve:?}");
+                        assert_eq!(curve.last().unwrap().1, 0.0);
+                        let impulse = impact.contact.unwrap().impulse;
+                        assert!((impulse / (p.mass * v) - 1.0).abs() < 0.2, "{impulse}");
+                        impact.pair
+                    }
+                    Course::Ideal { .. } => panic!("a Hertz contact: {c:?}"),
+                })
+                .collect();
+            assert_eq!(pairs, [0, 1, 2, 3]);
+        } else {
+            // Equal elastic balls: the striker's velocity passes to the last.
+            let [Course::Ideal { before, after, .. }] = strike.as_slice() else {
+                panic!("one ideal impact: {strike:?}");
+            };
+            assert!((before[0] - v).abs() < 1e-9 && before[4] == 0.0);
+            assert!((after[4] - v).abs() < 1e-9 && after[0].abs() < 1e-9);
+        }
+        // Closed, the physics keeps no courses.
+        world.set_recording(false);
+        for n in 31..=90 {
+            world.show_at(f64::from(n) / 60.0);
+            assert!(world.impacts().courses.is_empty());
+        }
+        assert!(world.recording().strike.is_empty());
+    }
 }
 
 #[test]

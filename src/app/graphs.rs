@@ -1,13 +1,14 @@
 //! The graphs window (G): `egui_plot` plots of what the physics recorded
 //! ([`Recording`]) over the last 30 s of simulated time: energy, momentum,
-//! angles and a phase portrait, amplitudes, and the last impacts. It follows
-//! the simulated time at any rate and stands still while paused (nothing new
-//! is recorded then).
+//! angles and a phase portrait, amplitudes, and the last impacts (the last
+//! one's course: Hertz's force per pair in microseconds, or an ideal impact's
+//! velocities before and after). It follows the simulated time at any rate
+//! and stands still while paused (nothing new is recorded then).
 
-use crate::physics::CradleParams;
+use crate::physics::{Course, CradleParams};
 use crate::scene::record::{Recording, Sample};
 use egui::Context;
-use egui_plot::{Legend, Line, Plot, PlotPoints};
+use egui_plot::{Bar, BarChart, Legend, Line, Plot, PlotPoints};
 
 /// At most this many points per line: more would not show at the window's
 /// width and would cost the frame its time.
@@ -200,20 +201,26 @@ fn amplitudes(ui: &mut egui::Ui, samples: &[&Sample], p: &CradleParams, n: usize
     });
 }
 
-/// The last impacts, newest first: time, balls, speed, and for Hertz contact
-/// how long and how hard.
+/// The last impact's course, then the last impacts, newest first: time,
+/// balls, speed, and for Hertz contact how long, how hard and the impulse.
 fn impacts(ui: &mut egui::Ui, rec: &Recording) {
     if rec.impacts.is_empty() {
         ui.label("none yet");
         return;
     }
+    match rec.strike.first() {
+        Some(Course::Force { .. }) => contact_forces(ui, &rec.strike),
+        Some(Course::Ideal { before, after, .. }) => velocities(ui, before, after),
+        None => {}
+    }
     egui::Grid::new("impacts").striped(true).show(ui, |ui| {
         for h in [
             "t (s)",
             "balls",
-            "speed (m/s)",
+            "v (m/s)",
             "contact (us)",
-            "peak force (N)",
+            "F max (N)",
+            "J (mN s)",
         ] {
             ui.strong(h);
         }
@@ -225,11 +232,85 @@ fn impacts(ui: &mut egui::Ui, rec: &Recording) {
             if let Some(c) = i.contact {
                 ui.label(format!("{:.1}", c.duration * 1e6));
                 ui.label(format!("{:.0}", c.peak_force));
+                ui.label(format!("{:.3}", c.impulse * 1e3));
             } else {
                 ui.label("ideal");
+                ui.label("");
                 ui.label("");
             }
             ui.end_row();
         }
     });
+}
+
+/// The last strike's Hertz contacts: each pair's force against time in
+/// microseconds, as the contact integration stepped: from the strike's start
+/// when its contacts overlap in time (a touching chain), from each contact's
+/// own start when they come one after another (a chain with gaps).
+fn contact_forces(ui: &mut egui::Ui, strike: &[Course]) {
+    let span = |c: &Course| match c {
+        Course::Force { impact, curve } => (impact.t, curve.last().map_or(0.0, |p| p.0)),
+        Course::Ideal { t, .. } => (*t, 0.0),
+    };
+    let t0 = strike.first().map_or(0.0, Course::start);
+    let end = strike
+        .iter()
+        .map(|c| span(c).0 + span(c).1)
+        .fold(t0, f64::max);
+    let longest = strike.iter().map(|c| span(c).1).fold(0.0, f64::max);
+    let together = end - t0 <= 4.0 * longest;
+    let x_label = if together {
+        "t since the strike (us)"
+    } else {
+        "t since each contact began (us)"
+    };
+    Plot::new("contact")
+        .height(150.0)
+        .legend(Legend::default())
+        .x_axis_label(x_label)
+        .y_axis_label("F (N)")
+        .allow_scroll(false)
+        .show(ui, |pu| {
+            for c in strike.iter().take(BALLS) {
+                let Course::Force { impact, curve } = c else {
+                    continue;
+                };
+                let from = if together { impact.t - t0 } else { 0.0 };
+                let stride = curve.len().div_ceil(POINTS).max(1);
+                let points: PlotPoints = curve
+                    .iter()
+                    .step_by(stride)
+                    .chain(curve.last().filter(|_| stride > 1))
+                    .map(|&(t, f)| [(from + t) * 1e6, f])
+                    .collect();
+                let balls = format!("balls {}-{}", impact.pair + 1, impact.pair + 2);
+                let name = if together {
+                    balls
+                } else {
+                    format!("{balls} at +{:.1} ms", (impact.t - t0) * 1e3)
+                };
+                pu.line(Line::new(name, points));
+            }
+        });
+}
+
+/// An ideal impact: each ball's velocity just before and just after it.
+fn velocities(ui: &mut egui::Ui, before: &[f64], after: &[f64]) {
+    let bars = |v: &[f64], shift: f64| -> Vec<Bar> {
+        v.iter()
+            .take(BALLS)
+            .enumerate()
+            .map(|(k, &v)| Bar::new(k as f64 + 1.0 + shift, v).width(0.35))
+            .collect()
+    };
+    Plot::new("velocities")
+        .height(150.0)
+        .legend(Legend::default())
+        .x_axis_label("ball")
+        .y_axis_label("v (m/s)")
+        .allow_scroll(false)
+        .show(ui, |pu| {
+            pu.bar_chart(BarChart::new("before", bars(before, -0.2)));
+            pu.bar_chart(BarChart::new("after", bars(after, 0.2)));
+        });
 }

@@ -1,6 +1,6 @@
 //! ECS components, markers, resources and messages of the cradle world.
 
-use crate::physics::{Cradle, Impact, Snapshot};
+use crate::physics::{Course, Cradle, Impact, Snapshot};
 use crate::trace;
 use bevy_ecs::prelude::*;
 use glam::{DQuat, DVec3};
@@ -132,11 +132,15 @@ impl CradleState {
 }
 
 /// The impacts of the last frame: those after the previous frame's time, up
-/// to this one's (none while paused). The sound reads them.
+/// to this one's (none while paused). The sound reads them, the graphs their
+/// courses.
 #[derive(Resource, Debug, Clone, Default)]
 pub struct FrameImpacts {
     /// Earliest first.
     pub impacts: Vec<Impact>,
+    /// Their courses, earliest first, while the cradle keeps them (the graphs
+    /// are open): a Hertz contact's is handed out once it has ended.
+    pub courses: Vec<Course>,
     /// The first ball's pivot in the world (m): an impact's contact point
     /// `at` is `(origin.x + at.0, origin.y + at.1, origin.z)`.
     pub origin: DVec3,

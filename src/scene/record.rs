@@ -1,9 +1,10 @@
 //! What the graphs read: the physics system's state, recorded each frame while
 //! the graphs are open (a resource the physics fills; nothing while closed),
-//! over the last 30 s of simulated time, and the last impacts.
+//! over the last 30 s of simulated time, the last impacts, and the course of
+//! the last one (the physics keeps courses only while recording).
 
 use super::components::{CradleState, FrameImpacts};
-use crate::physics::{CradleParams, Impact};
+use crate::physics::{Course, CradleParams, Impact};
 use bevy_ecs::prelude::*;
 use std::collections::VecDeque;
 
@@ -12,6 +13,16 @@ pub const SPAN: f64 = 30.0;
 
 /// How many of the last impacts are kept.
 pub const IMPACTS: usize = 20;
+
+/// Hertz contacts closer in time than this fraction of the swing's period
+/// are one strike: its pulse runs down a touching chain pair by pair, tens of
+/// microseconds apart, and down a chain with gaps milliseconds apart (20 ms
+/// for the default cradle), while strikes come half a period apart.
+const SAME_STRIKE: f64 = 0.025;
+
+/// At most this many contacts make one strike (a row of balls pressing
+/// together for long would otherwise chain them without end).
+const STRIKE_CONTACTS: usize = 64;
 
 /// One recorded frame.
 #[derive(Debug, Clone, PartialEq)]
@@ -91,6 +102,10 @@ pub struct Recording {
     pub samples: VecDeque<Sample>,
     /// The last [`IMPACTS`] impacts, oldest first.
     pub impacts: VecDeque<Impact>,
+    /// The last impact's course: for Hertz contact each pair's force curve
+    /// (the contacts of one strike, earliest first), for an ideal impact the
+    /// velocities before and after.
+    pub strike: Vec<Course>,
     /// The cradle's parameters (for amplitudes and the CSV's header).
     pub params: Option<CradleParams>,
 }
@@ -100,13 +115,53 @@ impl Recording {
     pub fn clear(&mut self) {
         self.samples.clear();
         self.impacts.clear();
+        self.strike.clear();
         self.params = None;
+    }
+
+    /// Adds a course to the last impact, or starts the next one with it.
+    fn add_course(&mut self, course: &Course) {
+        let span = |c: &Course| match c {
+            Course::Force { impact, curve } => {
+                (impact.t, impact.t + curve.last().map_or(0.0, |p| p.0))
+            }
+            Course::Ideal { t, .. } => (*t, *t),
+        };
+        let (lo, hi) = span(course);
+        let apart = SAME_STRIKE * self.params.map_or(0.0, |p| std::f64::consts::TAU / p.w0());
+        let joins = matches!(course, Course::Force { .. })
+            && self.strike.len() < STRIKE_CONTACTS
+            && self
+                .strike
+                .iter()
+                .all(|c| matches!(c, Course::Force { .. }))
+            && self.strike.iter().any(|c| {
+                let (l, h) = span(c);
+                lo <= h + apart && hi >= l - apart
+            });
+        if !joins {
+            self.strike.clear();
+        }
+        self.strike.push(course.clone());
+        self.strike.sort_by(|a, b| a.start().total_cmp(&b.start()));
     }
 }
 
 /// Physics: while the graphs are open, records the frame's state (once per
-/// simulated time: a paused frame adds nothing) and its impacts.
-pub fn record(state: Res<CradleState>, impacts: Res<FrameImpacts>, mut rec: ResMut<Recording>) {
+/// simulated time: a paused frame adds nothing) and its impacts, and has the
+/// physics keep the impacts' courses (only then).
+pub fn record(
+    mut state: ResMut<CradleState>,
+    impacts: Res<FrameImpacts>,
+    mut rec: ResMut<Recording>,
+) {
+    if state.cradle.recording_courses() != rec.on {
+        // Not a change of the cradle's state: what moves stays put.
+        state
+            .bypass_change_detection()
+            .cradle
+            .record_courses(rec.on);
+    }
     if !rec.on {
         return;
     }
@@ -129,6 +184,9 @@ pub fn record(state: Res<CradleState>, impacts: Res<FrameImpacts>, mut rec: ResM
             rec.impacts.pop_front();
         }
         rec.impacts.push_back(*i);
+    }
+    for c in &impacts.courses {
+        rec.add_course(c);
     }
 }
 

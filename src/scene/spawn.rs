@@ -103,8 +103,8 @@ pub fn respawn(world: &mut World, config: &Config) {
 fn insert_resources(world: &mut World, config: &Config) {
     world.insert_resource(CradleState::new(config.build_cradle()));
     world.insert_resource(FrameImpacts {
-        impacts: Vec::new(),
         origin: Layout::new(config).first_pivot,
+        ..FrameImpacts::default()
     });
     world.insert_resource(SimClock::default());
     world.insert_resource(if config.start.running {

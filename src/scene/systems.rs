@@ -46,6 +46,7 @@ pub fn step_physics(
     mut impacts: ResMut<FrameImpacts>,
 ) {
     impacts.impacts.clear();
+    impacts.courses.clear();
     if sim.snapshot.t != clock.t {
         let snapshot = match clock.deadline {
             Some(d) => sim.cradle.snapshot_by(clock.t, d),
@@ -55,6 +56,7 @@ pub fn step_physics(
             clock.t = snapshot.t;
         }
         impacts.impacts = sim.cradle.take_impacts(snapshot.t);
+        impacts.courses = sim.cradle.take_courses(snapshot.t);
         sim.snapshot = snapshot;
     }
 }
