@@ -34,6 +34,13 @@ impl Panel {
     /// A panel for `window`, drawing with `pixels`' device.
     pub fn new(window: &Window, pixels: &Pixels<'_>) -> Self {
         let ctx = Context::default();
+        // No shadows under the windows: a shadow is a wide blurred band of
+        // blended pixels, a third of what a software renderer (lavapipe) spends
+        // drawing the panel.
+        ctx.global_style_mut(|s| {
+            s.visuals.window_shadow = egui::epaint::Shadow::NONE;
+            s.visuals.popup_shadow = egui::epaint::Shadow::NONE;
+        });
         let size = window.inner_size();
         let scale = window.scale_factor() as f32;
         let max_side = pixels.device().limits().max_texture_dimension_2d as usize;
@@ -55,7 +62,12 @@ impl Panel {
             renderer: Renderer::new(
                 pixels.device(),
                 pixels.render_texture_format(),
-                RendererOptions::default(),
+                // Without dithering's noise per pixel: the panel's flat
+                // colours do not band, and a software renderer saves its cost.
+                RendererOptions {
+                    dithering: false,
+                    ..RendererOptions::default()
+                },
             ),
             paint_jobs: Vec::new(),
             textures: TexturesDelta::default(),
