@@ -1,9 +1,10 @@
 //! `newtons-cradle render`: frames of the swinging cradle without a window, as a
-//! PNG, a numbered PNG sequence, or an animated GIF, and with `--audio` the
-//! frames' soundtrack (`sound::track`) from the impacts each frame reports.
+//! PNG, a numbered PNG sequence, an animated GIF or an animated PNG, and with
+//! `--audio` the frames' soundtrack (`sound::track`) from the impacts each
+//! frame reports.
 
 use crate::config::Config;
-use crate::export::{self, GifWriter, Kind, WriteError};
+use crate::export::{self, ApngWriter, GifWriter, Kind, WriteError};
 use crate::scene::CradleWorld;
 use crate::sound::track::Soundtrack;
 use crate::trace::{self, Image};
@@ -28,6 +29,12 @@ pub enum Output {
         frames: u32,
         fps: f64,
     },
+    /// An animated PNG of `frames` frames (lossless).
+    Apng {
+        path: PathBuf,
+        frames: u32,
+        fps: f64,
+    },
 }
 
 impl Output {
@@ -40,6 +47,7 @@ impl Output {
         match self {
             Self::Png(p) => export::check_output(p, Kind::Png, input),
             Self::Gif { path, .. } => export::check_output(path, Kind::Gif, input),
+            Self::Apng { path, .. } => export::check_output(path, Kind::Png, input),
             Self::Sequence {
                 dir, first, frames, ..
             } => (*first..first.saturating_add(*frames))
@@ -67,7 +75,7 @@ impl Output {
                 start + f64::from(*first) / fps,
                 f64::from(*frames) / fps,
             )),
-            Self::Gif { frames, fps, .. } => {
+            Self::Gif { frames, fps, .. } | Self::Apng { frames, fps, .. } => {
                 Some(Soundtrack::new(config, start, f64::from(*frames) / fps))
             }
         }
@@ -152,6 +160,25 @@ pub fn render(
             }
             progress.finish_and_clear();
             gif.finish()?;
+            written.push(path.clone());
+        }
+        Output::Apng { path, frames, fps } => {
+            let (w, h) = (config.render.width, config.render.height);
+            let mut apng = ApngWriter::create(path, w, h, *frames)?;
+            let mut delays = export::Delays::in_units(*fps, 1000.0);
+            let progress = crate::bench::progress_bar(u64::from(*frames), "frames");
+            for n in 0..*frames {
+                // Whole frames per second exactly (1/30 s), others in rounded
+                // milliseconds that add up to the frame times.
+                let delay = match u16::try_from(*fps as i64) {
+                    Ok(whole) if fps.fract() == 0.0 => (1, whole),
+                    _ => (delays.next_delay(), 1000),
+                };
+                apng.push(&frame_at(start + f64::from(n) / fps, &mut track), delay)?;
+                progress.inc(1);
+            }
+            progress.finish_and_clear();
+            apng.finish()?;
             written.push(path.clone());
         }
     }
@@ -266,7 +293,7 @@ pub fn describe(output: &Output) -> String {
             "{frames} frames from frame {first} at {fps} fps in {}",
             Path::new(dir).display()
         ),
-        Output::Gif { path, frames, fps } => {
+        Output::Gif { path, frames, fps } | Output::Apng { path, frames, fps } => {
             format!("{frames} frames at {fps} fps in {}", path.display())
         }
     }

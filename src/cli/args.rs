@@ -42,7 +42,7 @@ pub enum Command {
     Run,
     /// Print the cradle's state as JSON Lines: params, samples, summary.
     Simulate(SimulateArgs),
-    /// Ray trace frames without a window: a PNG, a PNG sequence, or a GIF.
+    /// Ray trace frames without a window: a PNG, a PNG sequence, a GIF or an animated PNG.
     Render(RenderArgs),
     /// Measure the program.
     #[command(subcommand)]
@@ -63,7 +63,7 @@ pub struct RenderArgs {
         value_name = "S"
     )]
     pub time: f64,
-    /// Number of frames of a sequence or GIF, 1..=100000 (GIF default 60).
+    /// Number of frames of a sequence or animation, 1..=100000 (animation default 60).
     #[arg(value_parser = whole("1..=100000"), long, allow_negative_numbers = true, value_name = "N")]
     pub frames: Option<i64>,
     /// Frames per second of simulated time, > 0 and <= 1000.
@@ -77,12 +77,16 @@ pub struct RenderArgs {
     /// Write an animated GIF here instead.
     #[arg(long, value_name = "FILE.gif")]
     pub gif: Option<PathBuf>,
+    /// Write an animated PNG here instead (lossless; later frames hold only
+    /// what changed).
+    #[arg(long, value_name = "FILE.png")]
+    pub apng: Option<PathBuf>,
     /// With --frames and --out DIR/: render frames K..K+N-1 (files numbered from
     /// K), so that a long sequence splits across processes, 0..=10000000.
     #[arg(value_parser = whole("0..=10000000"), long, allow_negative_numbers = true, value_name = "K")]
     pub first: Option<i64>,
-    /// With a sequence or a GIF: also write its soundtrack here (48 kHz, 16-bit
-    /// stereo, as long as the frames).
+    /// With a sequence or an animation: also write its soundtrack here (48 kHz,
+    /// 16-bit stereo, as long as the frames).
     #[arg(long, value_name = "FILE.wav")]
     pub audio: Option<PathBuf>,
 }

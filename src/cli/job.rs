@@ -341,7 +341,15 @@ fn render_output(a: &RenderArgs) -> Result<crate::headless::Output, InputError> 
         None => 0,
         Some(k) => flag_value("--first", k, (0..=10_000_000).contains(&k), "0..=10000000")? as u32,
     };
-    if a.first.is_some() && (frames.is_none() || a.gif.is_some()) {
+    let animation = match (&a.gif, &a.apng) {
+        (Some(_), Some(_)) => {
+            return Err(InputError::Flag(
+                "give either --gif or --apng, not both".into(),
+            ));
+        }
+        (gif, apng) => gif.is_some() || apng.is_some(),
+    };
+    if a.first.is_some() && (frames.is_none() || animation) {
         return Err(InputError::Flag(
             "--first K: allowed with --frames N --out DIR/ (a PNG sequence) only".into(),
         ));
@@ -364,12 +372,24 @@ fn render_output(a: &RenderArgs) -> Result<crate::headless::Output, InputError> 
             last.short()
         )));
     }
-    if a.audio.is_some() && frames.is_none() && a.gif.is_none() {
+    if a.audio.is_some() && frames.is_none() && !animation {
         return Err(InputError::Flag(
-            "--audio FILE.wav: allowed with --frames N --out DIR/ or --gif FILE.gif (a soundtrack \
-             needs frames; one picture has none)"
+            "--audio FILE.wav: allowed with --frames N --out DIR/, --gif FILE.gif or --apng \
+             FILE.png (a soundtrack needs frames; one picture has none)"
                 .into(),
         ));
+    }
+    if let Some(apng) = &a.apng {
+        if a.out.is_some() {
+            return Err(InputError::Flag(
+                "give either --out or --apng, not both".into(),
+            ));
+        }
+        return Ok(Output::Apng {
+            path: apng.clone(),
+            frames: frames.unwrap_or(60),
+            fps: a.fps,
+        });
     }
     match (&a.out, &a.gif, frames) {
         (Some(_), Some(_), _) => Err(InputError::Flag(
@@ -389,7 +409,8 @@ fn render_output(a: &RenderArgs) -> Result<crate::headless::Output, InputError> 
             if picture {
                 return Err(InputError::Flag(format!(
                     "--out {} with --frames: a sequence goes into a folder; allowed: --out DIR/ \
-                     (or --out FILE.png without --frames for one picture, --gif FILE.gif for an animation)",
+                     (or --out FILE.png without --frames for one picture, --gif FILE.gif or \
+                     --apng FILE.png for an animation)",
                     dir.display()
                 )));
             }
@@ -402,7 +423,9 @@ fn render_output(a: &RenderArgs) -> Result<crate::headless::Output, InputError> 
         }
         (Some(png), None, None) => Ok(Output::Png(png.clone())),
         (None, None, _) => Err(InputError::Flag(
-            "say where to write: --out FILE.png, --frames N --out DIR/, or --gif FILE.gif".into(),
+            "say where to write: --out FILE.png, --frames N --out DIR/, --gif FILE.gif or --apng \
+             FILE.png"
+                .into(),
         )),
     }
 }

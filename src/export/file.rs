@@ -1,11 +1,9 @@
-//! Writing pictures and sound: PNG frames, animated GIFs, SVG plots and WAV
-//! soundtracks, each under a
-//! temporary name in its folder and renamed into place only when complete, so
-//! that no file is ever half-written (a failed write, a full disk or Ctrl-C leaves
-//! the old file, or none). [`check_output`] refuses, before any work, a path that
-//! would replace the config being read or a file that is not a picture of ours.
+//! Output files: each written under a temporary name in its folder and renamed
+//! into place only when complete, so that no file is ever half-written (a
+//! failed write, a full disk or Ctrl-C leaves the old file, or none).
+//! [`check_output`] refuses, before any work, a path that would replace the
+//! config being read or a file that is not one of ours.
 
-use crate::trace::Image;
 use std::fs::File;
 use std::io::{BufWriter, Read, Seek, Write};
 use std::path::{Path, PathBuf};
@@ -26,7 +24,7 @@ pub struct WriteError {
 }
 
 /// A path that must not or cannot be written: bad input.
-fn bad(path: &Path, reason: impl ToString) -> WriteError {
+pub(super) fn bad(path: &Path, reason: impl ToString) -> WriteError {
     WriteError {
         path: path.to_path_buf(),
         reason: reason.to_string(),
@@ -35,7 +33,7 @@ fn bad(path: &Path, reason: impl ToString) -> WriteError {
 }
 
 /// A failure while encoding or writing: never the path's fault.
-fn fail(path: &Path, reason: impl ToString) -> WriteError {
+pub(super) fn fail(path: &Path, reason: impl ToString) -> WriteError {
     WriteError {
         path: path.to_path_buf(),
         reason: reason.to_string(),
@@ -45,7 +43,7 @@ fn fail(path: &Path, reason: impl ToString) -> WriteError {
 
 /// An I/O failure: bad input where the path is to blame (no such folder, no
 /// permission, a file where a folder should be), else a failure of the writing.
-fn io_fail(path: &Path, e: &std::io::Error) -> WriteError {
+pub(super) fn io_fail(path: &Path, e: &std::io::Error) -> WriteError {
     use std::io::ErrorKind as K;
     let bad_path = matches!(
         e.kind(),
@@ -76,7 +74,7 @@ pub enum Kind {
 }
 
 impl Kind {
-    fn extension(self) -> &'static str {
+    pub(super) fn extension(self) -> &'static str {
         match self {
             Self::Png => "png",
             Self::Gif => "gif",
@@ -145,7 +143,7 @@ pub fn check_output(path: &Path, kind: Kind, input: Option<&Path>) -> Result<(),
 
 /// Creates the folders above `path`, with a plain message when one of them is a
 /// file.
-fn create_folder(path: &Path) -> Result<(), WriteError> {
+pub(super) fn create_folder(path: &Path) -> Result<(), WriteError> {
     let Some(parent) = path.parent().filter(|p| !p.as_os_str().is_empty()) else {
         return Ok(());
     };
@@ -273,143 +271,4 @@ pub fn write_all(path: &Path, bytes: &[u8]) -> Result<(), WriteError> {
     let mut f = AtomicFile::create(path)?;
     f.write_all(bytes).map_err(|e| io_fail(path, &e))?;
     f.commit()
-}
-
-/// Writes an RGBA8 sRGB image as PNG, atomically.
-///
-/// # Errors
-/// When the file cannot be created or written.
-pub fn write_png(path: &Path, img: &Image) -> Result<(), WriteError> {
-    create_folder(path)?;
-    let mut f = AtomicFile::create(path)?;
-    {
-        let mut enc = png::Encoder::new(&mut f, img.width, img.height);
-        enc.set_color(png::ColorType::Rgba);
-        enc.set_depth(png::BitDepth::Eight);
-        enc.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
-        let mut writer = enc.write_header().map_err(|e| fail(path, e))?;
-        writer
-            .write_image_data(&img.rgba)
-            .map_err(|e| fail(path, e))?;
-        writer.finish().map_err(|e| fail(path, e))?;
-    }
-    f.commit()
-}
-
-/// Writes a 16-bit stereo WAV of `frames` frames at `rate` Hz, atomically,
-/// asking `chunk` for interleaved left/right samples a second at a time from
-/// frame `first` on: a long soundtrack never sits whole in memory.
-///
-/// # Errors
-/// When the file cannot be created or written.
-pub fn write_wav(
-    path: &Path,
-    rate: u32,
-    frames: u64,
-    mut chunk: impl FnMut(u64, &mut [i16]),
-) -> Result<(), WriteError> {
-    create_folder(path)?;
-    let spec = hound::WavSpec {
-        channels: 2,
-        sample_rate: rate,
-        bits_per_sample: 16,
-        sample_format: hound::SampleFormat::Int,
-    };
-    let mut f = AtomicFile::create(path)?;
-    let mut wav = hound::WavWriter::new(&mut f, spec).map_err(|e| fail(path, e))?;
-    let mut buf = Vec::new();
-    let mut first = 0;
-    while first < frames {
-        let n = (frames - first).min(u64::from(rate));
-        buf.clear();
-        buf.resize(2 * n as usize, 0);
-        chunk(first, &mut buf);
-        for v in &buf {
-            wav.write_sample(*v).map_err(|e| fail(path, e))?;
-        }
-        first += n;
-    }
-    wav.finalize().map_err(|e| fail(path, e))?;
-    f.commit()
-}
-
-/// An animated GIF being written frame by frame, looping for ever; it appears
-/// at its path only when [`Self::finish`] has written it whole.
-pub struct GifWriter {
-    path: PathBuf,
-    encoder: gif::Encoder<AtomicFile>,
-    delays: Delays,
-}
-
-/// GIF frame delays in centiseconds whose sum follows the frame times, so that
-/// 30 fps plays at 30 fps on average (3, 3, 4, 3, 3, 4, ..), not 33.3.
-#[derive(Debug, Clone, Copy)]
-pub struct Delays {
-    fps: f64,
-    frames: u64,
-}
-
-impl Delays {
-    /// Delays for `fps` frames per second.
-    #[must_use]
-    pub fn new(fps: f64) -> Self {
-        Self { fps, frames: 0 }
-    }
-
-    /// The next frame's delay: the centiseconds from its start to the next one's,
-    /// both rounded, at least 1.
-    pub fn next_delay(&mut self) -> u16 {
-        let cs = |n: u64| (n as f64 * 100.0 / self.fps).round();
-        let d = cs(self.frames + 1) - cs(self.frames);
-        self.frames += 1;
-        d.clamp(1.0, 65535.0) as u16
-    }
-}
-
-impl GifWriter {
-    /// Starts a GIF of `width` x `height` at `fps` frames per second.
-    ///
-    /// # Errors
-    /// When the size exceeds 65535 or the file cannot be created.
-    pub fn create(path: &Path, width: u32, height: u32, fps: f64) -> Result<Self, WriteError> {
-        let (w, h) = (
-            u16::try_from(width).map_err(|e| fail(path, e))?,
-            u16::try_from(height).map_err(|e| fail(path, e))?,
-        );
-        create_folder(path)?;
-        let file = AtomicFile::create(path)?;
-        let mut encoder = gif::Encoder::new(file, w, h, &[]).map_err(|e| fail(path, e))?;
-        encoder
-            .set_repeat(gif::Repeat::Infinite)
-            .map_err(|e| fail(path, e))?;
-        Ok(Self {
-            path: path.to_path_buf(),
-            encoder,
-            delays: Delays::new(fps),
-        })
-    }
-
-    /// Appends a frame (quantised to 256 colours with `NeuQuant`, in place:
-    /// no copy of a picture that may be 268 MB).
-    ///
-    /// # Errors
-    /// When encoding fails.
-    pub fn push(&mut self, img: Image) -> Result<(), WriteError> {
-        let mut rgba = img.rgba;
-        let (w, h) = (img.width as u16, img.height as u16);
-        let mut frame = gif::Frame::from_rgba_speed(w, h, &mut rgba, 10);
-        frame.delay = self.delays.next_delay();
-        self.encoder
-            .write_frame(&frame)
-            .map_err(|e| fail(&self.path, e))
-    }
-
-    /// Writes the trailer and the whole file, atomically.
-    ///
-    /// # Errors
-    /// When the file cannot be written.
-    pub fn finish(self) -> Result<(), WriteError> {
-        let file = self.encoder.into_inner().map_err(|e| fail(&self.path, e))?;
-        file.commit()
-    }
 }
