@@ -164,7 +164,7 @@ pub fn render(
         }
         Output::Apng { path, frames, fps } => {
             let (w, h) = (config.render.width, config.render.height);
-            let mut apng = ApngWriter::create(path, w, h, *frames)?;
+            let mut apng = ApngWriter::create(path, (w, h), *frames, false)?;
             let mut delays = export::Delays::in_units(*fps, 1000.0);
             let progress = crate::bench::progress_bar(u64::from(*frames), "frames");
             for n in 0..*frames {

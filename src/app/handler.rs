@@ -4,6 +4,7 @@
 
 use super::UserEvent;
 use super::mouse::Mouse;
+use super::replay::Replay;
 use super::session::{Effect, Session};
 use super::surface::Surface;
 use super::{keys, notice, screenshot};
@@ -26,6 +27,8 @@ pub struct App {
     sound: Sound,
     /// The session's hushes the sound has heard of.
     hushes: u64,
+    /// The last seconds shown (V).
+    replay: Replay,
     /// Why the loop was ended early, returned by `run`.
     pub failure: Option<anyhow::Error>,
 }
@@ -48,6 +51,7 @@ impl App {
             ctrl: false,
             proxy,
             sound,
+            replay: Replay::start(),
             failure: None,
         }
     }
@@ -68,8 +72,12 @@ impl App {
         let timbre = crate::sound::track::timbre(self.session.config());
         let scene = self.session.scene();
         let rate = self.session.rate();
-        let clicks = heard.iter().flat_map(|a| a.clicks(&timbre, scene, rate));
-        self.sound.play(clicks.collect::<Vec<_>>(), shown);
+        let clicks: Vec<_> = heard
+            .iter()
+            .flat_map(|a| a.clicks(&timbre, scene, rate))
+            .collect();
+        self.replay.clicks(clicks.clone());
+        self.sound.play(clicks, shown);
     }
 
     /// Saves what the window shows: with the HUD on, the picture with it (and
@@ -90,6 +98,26 @@ impl App {
             }
             _ => screenshot::save(r.width, r.height, &surface.frame(), done),
         }
+    }
+
+    /// Saves the last seconds shown, off the frame loop; a notice says where.
+    fn keep(&mut self) {
+        let proxy = self.proxy.clone();
+        let done = move |kept| {
+            // The loop has ended when this fails: nobody to tell.
+            let _ = proxy.send_event(UserEvent::Kept(kept));
+        };
+        let png = super::replay::free_name(&screenshot::stamp_now());
+        let timbre = crate::sound::track::timbre(self.session.config());
+        self.session.notify(
+            format!(
+                "saving the last {:.0} s as {}",
+                super::replay::SPAN,
+                png.display()
+            ),
+            notice::GOOD,
+        );
+        self.replay.save(png, timbre, done);
     }
 
     fn fail(&mut self, event_loop: &ActiveEventLoop, e: anyhow::Error) {
@@ -120,7 +148,16 @@ impl App {
         self.session.launch();
         let t1 = std::time::Instant::now();
         let cpu1 = thread_cpu();
-        if let Err(e) = surface.draw(panel) {
+        let shows = surface.visible();
+        let drawn = surface.draw(panel);
+        if shows && drawn.is_ok() && self.session.running() {
+            let now = std::time::Instant::now();
+            self.replay
+                .frame(now, surface.raw_frame(), surface.touched());
+        } else {
+            self.replay.pause();
+        }
+        if let Err(e) = drawn {
             self.fail(event_loop, e);
         }
         // The main thread's cost of the egui frame and of presenting, in wall
@@ -167,6 +204,27 @@ impl ApplicationHandler<UserEvent> for App {
             UserEvent::Saved(Err(e)) => {
                 self.session
                     .notify(format!("screenshot not saved: {e}"), notice::BAD);
+                self.redraw();
+            }
+            UserEvent::Kept(Ok(kept)) => {
+                let sound = kept
+                    .wav
+                    .as_ref()
+                    .map_or(String::new(), |w| format!(" and {}", w.display()));
+                self.session.notify(
+                    format!(
+                        "saved {:.1} s, {} frames: {}{sound}",
+                        kept.seconds,
+                        kept.frames,
+                        kept.png.display()
+                    ),
+                    notice::GOOD,
+                );
+                self.redraw();
+            }
+            UserEvent::Kept(Err(e)) => {
+                self.session
+                    .notify(format!("last seconds not saved: {e}"), notice::BAD);
                 self.redraw();
             }
             UserEvent::Reload => {
@@ -223,6 +281,7 @@ impl ApplicationHandler<UserEvent> for App {
                 match self.session.act(action) {
                     Effect::Redraw => {}
                     Effect::Screenshot => self.screenshot(),
+                    Effect::Replay => self.keep(),
                     Effect::Quit => event_loop.exit(),
                 }
                 if let Some(surface) = &mut self.surface {

@@ -17,6 +17,8 @@ pub enum Action {
     ToggleHud,
     /// S: save a screenshot.
     Screenshot,
+    /// V: save the last 10 seconds as an animated PNG (and WAV).
+    Replay,
     /// `,` / `.`: half / twice the time rate (1/16x..=4x).
     Rate(i32),
     /// N: one frame (1/60 s of simulated time, at the rate) while paused.
@@ -59,6 +61,7 @@ pub fn action(key: &Key, ctrl: bool, shift: bool) -> Option<Action> {
             "r" => Some(Action::Reset),
             "h" => Some(Action::ToggleHud),
             "s" => Some(Action::Screenshot),
+            "v" => Some(Action::Replay),
             "," => Some(Action::Rate(-1)),
             "." => Some(Action::Rate(1)),
             "n" => Some(Action::Step),
@@ -88,7 +91,7 @@ pub const HELP: [(&str, &str); 18] = [
     ("wheel / C", "zoom / reset the view"),
     ("TAB", "control panel, presets"),
     ("CTRL+Z", "undo a panel change"),
-    ("S", "save a screenshot"),
+    ("S / V", "screenshot / last 10 s"),
     ("M", "mute / unmute the clicks"),
     ("G / SHIFT+G", "graphs / graphs as CSV"),
     ("H or F1", "help / no HUD / status"),
@@ -133,6 +136,7 @@ mod tests {
         assert_eq!(action(&ch("h")), Some(Action::ToggleHud));
         assert_eq!(action(&Key::Named(NamedKey::F1)), Some(Action::ToggleHud));
         assert_eq!(action(&ch("s")), Some(Action::Screenshot));
+        assert_eq!(action(&ch("v")), Some(Action::Replay));
         assert_eq!(action(&Key::Named(NamedKey::Escape)), Some(Action::Quit));
         assert_eq!(action(&ch(",")), Some(Action::Rate(-1)));
         assert_eq!(action(&ch(".")), Some(Action::Rate(1)));

@@ -10,7 +10,8 @@
 //! - `handler`: winit's event handler between the two.
 //! - `keys`, `mouse`, `orbit`, `drag`: the key map, drags and wheel, the
 //!   user's view, dragging balls.
-//! - `reload`, `screenshot`: the config watcher, S's PNGs.
+//! - `reload`, `screenshot`, [`replay`]: the config watcher, S's PNGs, V's
+//!   last 10 seconds as an animated PNG (and WAV).
 //! - `notice`, `presets`, `controls`: what an action did, shown for a moment;
 //!   the panel's presets and saved setups; the panel's settings and undo.
 //! - `audible`: each frame's impacts, held until the frame that shows them is
@@ -32,6 +33,7 @@ pub mod orbit;
 mod panel;
 pub mod presets;
 mod reload;
+pub mod replay;
 pub mod screenshot;
 pub mod session;
 mod surface;
@@ -47,6 +49,8 @@ enum UserEvent {
     Reload,
     /// A screenshot was saved (its file name) or not (why).
     Saved(Result<String, String>),
+    /// The last seconds were saved (V), or not (why).
+    Kept(Result<replay::Saved, String>),
 }
 
 /// Why the window could not run.

@@ -48,6 +48,8 @@ pub enum Effect {
     Redraw,
     /// Save what the window shows.
     Screenshot,
+    /// Save what the window showed over the last seconds.
+    Replay,
     /// Close the window.
     Quit,
 }
@@ -254,6 +256,7 @@ impl Session {
                 self.notify(said, notice::GOOD);
             }
             Action::Screenshot => return Effect::Screenshot,
+            Action::Replay => return Effect::Replay,
             Action::Quit => return Effect::Quit,
         }
         Effect::Redraw

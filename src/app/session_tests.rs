@@ -229,6 +229,7 @@ fn a_refused_panel_value_shows_a_notice_and_changes_nothing() {
 fn window_actions_are_left_to_the_window() {
     let mut s = session();
     assert_eq!(s.act(Action::Screenshot), Effect::Screenshot);
+    assert_eq!(s.act(Action::Replay), Effect::Replay);
     assert_eq!(s.act(Action::Quit), Effect::Quit);
 }
 

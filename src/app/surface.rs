@@ -201,6 +201,22 @@ impl Surface {
         }
     }
 
+    /// The framebuffer as last presented (the picture with the HUD): its
+    /// size, whether its bytes are BGRA (else RGBA), and the bytes.
+    #[must_use]
+    pub fn raw_frame(&self) -> ((u32, u32), bool, &[u8]) {
+        let t = self.pixels.context().texture_extent;
+        ((t.width, t.height), self.bgra, self.pixels.frame())
+    }
+
+    /// Per row of the framebuffer, the pixels `x0..x1` the last frame wrote
+    /// (`x0 >= x1`: none; `x1` may pass the width); `None` when any may have
+    /// changed.
+    #[must_use]
+    pub fn touched(&self) -> Option<&[(u32, u32)]> {
+        self.shown.touched()
+    }
+
     /// The framebuffer as last presented (the picture with the HUD), RGBA.
     #[must_use]
     pub fn frame(&self) -> Cow<'_, [u8]> {

@@ -3,7 +3,7 @@
 //! unchanged pixels transparent and blended over what is shown (lossless: a
 //! decoder shows every frame exactly as traced).
 
-use super::animation::{Rect, changed};
+use super::animation::{Rect, changed, changes_over};
 use super::file::{AtomicFile, WriteError, create_folder, fail};
 use crate::trace::Image;
 use std::cell::RefCell;
@@ -38,14 +38,23 @@ pub struct ApngWriter {
 }
 
 impl ApngWriter {
-    /// Starts an animation of `frames` frames of `width` x `height`.
+    /// Starts an animation of `frames` frames of `width` x `height`;
+    /// `quick`: compress for speed rather than size.
     ///
     /// # Errors
     /// When the file cannot be created.
-    pub fn create(path: &Path, width: u32, height: u32, frames: u32) -> Result<Self, WriteError> {
+    pub fn create(
+        path: &Path,
+        (width, height): (u32, u32),
+        frames: u32,
+        quick: bool,
+    ) -> Result<Self, WriteError> {
         create_folder(path)?;
         let file = Sink(Rc::new(RefCell::new(AtomicFile::create(path)?)));
         let mut enc = png::Encoder::new(file.clone(), width, height);
+        if quick {
+            enc.set_compression(png::Compression::Fast);
+        }
         enc.set_color(png::ColorType::Rgba);
         enc.set_depth(png::BitDepth::Eight);
         enc.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
@@ -86,7 +95,7 @@ impl ApngWriter {
                     width: 1,
                     height: 1,
                 });
-                let data = over(last, &img.rgba, w, rect);
+                let data = changes_over(last, &img.rgba, w, rect);
                 (rect, data, png::BlendOp::Over)
             }
             _ => {
@@ -131,22 +140,4 @@ impl ApngWriter {
             .into_inner();
         file.commit()
     }
-}
-
-/// The pixels of `rect` in `next` (rows of `width` RGBA8 pixels), with those
-/// equal to `last`'s transparent: over `last` they show `next`.
-fn over(last: &[u8], next: &[u8], width: u32, rect: Rect) -> Vec<u8> {
-    let row = width as usize * 4;
-    let mut out = Vec::with_capacity(rect.width as usize * rect.height as usize * 4);
-    for y in rect.y..rect.y + rect.height {
-        let at = y as usize * row + rect.x as usize * 4;
-        let span = at..at + rect.width as usize * 4;
-        for (a, b) in last[span.clone()]
-            .chunks_exact(4)
-            .zip(next[span].chunks_exact(4))
-        {
-            out.extend_from_slice(if a == b { &[0; 4] } else { b });
-        }
-    }
-    out
 }

@@ -56,6 +56,44 @@ pub fn crop(data: &[u8], width: u32, bytes: usize, rect: Rect) -> Vec<u8> {
         .collect()
 }
 
+/// The RGBA8 pixels of `rect` in `next` (rows of `width` pixels), with those
+/// equal to `last`'s transparent: put over `last` ([`put_over`]) they give
+/// `next`.
+#[must_use]
+pub fn changes_over(last: &[u8], next: &[u8], width: u32, rect: Rect) -> Vec<u8> {
+    let row = width as usize * 4;
+    let mut out = Vec::with_capacity(rect.width as usize * rect.height as usize * 4);
+    for y in rect.y..rect.y + rect.height {
+        let at = y as usize * row + rect.x as usize * 4;
+        let span = at..at + rect.width as usize * 4;
+        for (a, b) in last[span.clone()]
+            .chunks_exact(4)
+            .zip(next[span].chunks_exact(4))
+        {
+            out.extend_from_slice(if a == b { &[0; 4] } else { b });
+        }
+    }
+    out
+}
+
+/// Puts `changes` (from [`changes_over`]) over `canvas` (rows of `width`
+/// RGBA8 pixels): its transparent pixels keep the canvas's.
+pub fn put_over(canvas: &mut [u8], width: u32, rect: Rect, changes: &[u8]) {
+    let row = width as usize * 4;
+    let span = rect.width as usize * 4;
+    for (k, src) in changes.chunks_exact(span).enumerate() {
+        let at = (rect.y as usize + k) * row + rect.x as usize * 4;
+        for (dst, px) in canvas[at..at + span]
+            .chunks_exact_mut(4)
+            .zip(src.chunks_exact(4))
+        {
+            if px[3] != 0 {
+                dst.copy_from_slice(px);
+            }
+        }
+    }
+}
+
 /// Frame delays in units of `1 / unit` s whose sum follows the frame times,
 /// so that 30 fps in centiseconds plays at 30 fps on average (3, 3, 4, 3, 3,
 /// 4, ..), not 33.3.
@@ -95,7 +133,7 @@ impl Delays {
 
 #[cfg(test)]
 mod tests {
-    use super::{Rect, changed, crop};
+    use super::{Rect, changed, changes_over, crop, put_over};
 
     #[test]
     fn the_changed_rectangle_holds_every_difference_and_no_more() {
@@ -121,5 +159,21 @@ mod tests {
         q[4 * 6 - 1] = 0;
         let r = changed(&p, &q, 3, 4).expect("they differ");
         assert_eq!((r.x, r.y, r.width, r.height), (2, 1, 1, 1));
+    }
+
+    #[test]
+    fn changes_put_over_the_last_frame_give_the_next() {
+        // 3x2 opaque pixels; the middle of the top row and the last changed.
+        let last: Vec<u8> = (0..6).flat_map(|k| [k, k, k, 255]).collect();
+        let mut next = last.clone();
+        next[4..8].copy_from_slice(&[9, 9, 9, 255]);
+        next[20..24].copy_from_slice(&[7, 7, 7, 255]);
+        let rect = changed(&last, &next, 3, 4).expect("they differ");
+        let changes = changes_over(&last, &next, 3, rect);
+        // The unchanged pixels in the rectangle are transparent.
+        assert_eq!(&changes[8..12], &[0, 0, 0, 0]);
+        let mut canvas = last.clone();
+        put_over(&mut canvas, 3, rect, &changes);
+        assert_eq!(canvas, next);
     }
 }

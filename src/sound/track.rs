@@ -35,6 +35,18 @@ impl Soundtrack {
         }
     }
 
+    /// A track of `seconds` with `clicks` already laid on it (their times from
+    /// its start): the window's replay, whose clicks were heard live.
+    #[must_use]
+    pub fn laid(timbre: Timbre, seconds: f64, clicks: Vec<Click>) -> Self {
+        Self {
+            start: 0.0,
+            frames: (seconds * f64::from(RATE)).round() as u64,
+            timbre,
+            clicks,
+        }
+    }
+
     /// The simulated time the track starts at (s).
     #[must_use]
     pub fn start(&self) -> f64 {

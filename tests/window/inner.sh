@@ -9,7 +9,8 @@
 # from outside exits 0, and heavy settings (200 balls of the realistic cradle,
 # 4K at 64 samples) still answer Escape; and the sound (sound.sh): clicks at
 # the swing's rhythm, silence when muted, a silent window without a server;
-# and the graphs (graphs.sh): G opens them, Shift+G saves a CSV.
+# and the graphs (graphs.sh): G opens them, Shift+G saves a CSV; and V
+# (replay.sh): the last 10 s as an animated PNG and a WAV.
 set -uo pipefail
 bin="$1"
 work="$(mktemp -d)"
@@ -192,6 +193,8 @@ code=$?
 . "$(dirname "$0")/sound.sh"
 # shellcheck source=graphs.sh
 . "$(dirname "$0")/graphs.sh"
+# shellcheck source=replay.sh
+. "$(dirname "$0")/replay.sh"
 
 [ "$fail" -eq 0 ] || { echo "--- app log"; cat "$work/app.log"; }
 echo "window: $pass passed, $fail failed"

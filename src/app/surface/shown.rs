@@ -17,12 +17,35 @@ pub(super) struct Shown {
     id: Option<u64>,
     /// The HUD boxes drawn over it last.
     hud: Vec<Rect>,
+    /// Per row, the pixels `x0..x1` written since the last [`Self::put`]
+    /// (`x0 >= x1`: none); empty: unknown (everything may have changed).
+    touched: Vec<(u32, u32)>,
 }
 
 impl Shown {
     /// The framebuffer no longer holds a known picture.
     pub(super) fn forget(&mut self) {
         self.id = None;
+        self.touched.clear();
+    }
+
+    /// Per row of the framebuffer, the pixels `x0..x1` the last frame wrote
+    /// (picture and HUD; `x0 >= x1`: none); `None` when any may have changed.
+    pub(super) fn touched(&self) -> Option<&[(u32, u32)]> {
+        (!self.touched.is_empty()).then_some(&self.touched[..])
+    }
+
+    /// Notes that pixels `x0..x1` of rows `rows` were written.
+    fn touch(&mut self, rows: std::ops::Range<usize>, (x0, x1): (usize, usize)) {
+        for y in rows {
+            if let Some(t) = self.touched.get_mut(y) {
+                *t = if t.0 >= t.1 {
+                    (x0 as u32, x1 as u32)
+                } else {
+                    (t.0.min(x0 as u32), t.1.max(x1 as u32))
+                };
+            }
+        }
     }
 
     /// Makes `frame` (as many bytes as `img`, BGRA when `bgra`) hold `img`,
@@ -46,6 +69,8 @@ impl Shown {
         let (w, h) = (img.width as usize, img.height as usize);
         let stride = w * 4;
         let id = changes.map(|c| c.id);
+        self.touched.clear();
+        self.touched.resize(h, (0, 0));
         match changes {
             // The same picture again: only the HUD box below.
             Some(c) if self.id == Some(c.id) => {}
@@ -53,23 +78,32 @@ impl Shown {
                 for (y, &[a, b]) in c.rows.iter().enumerate() {
                     let span = y * stride + a as usize * 4..y * stride + b as usize * 4;
                     put(&mut frame[span.clone()], &img.rgba[span]);
+                    self.touch(y..y + 1, (a as usize, b as usize));
                 }
             }
-            _ => put(frame, &img.rgba),
+            _ => {
+                put(frame, &img.rgba);
+                self.touch(0..h, (0, w));
+            }
         }
-        for &(x, y0, bw, bh) in &self.hud {
+        for (x, y0, bw, bh) in std::mem::take(&mut self.hud) {
             let (x0, x1) = (x.min(w), (x + bw).min(w));
             for y in y0.min(h)..(y0 + bh).min(h) {
                 let span = y * stride + x0 * 4..y * stride + x1 * 4;
                 put(&mut frame[span.clone()], &img.rgba[span]);
             }
+            self.touch(y0.min(h)..(y0 + bh).min(h), (x0, x1));
         }
         self.id = id;
-        self.hud.clear();
     }
 
     /// The HUD boxes just drawn over the picture.
     pub(super) fn hud(&mut self, boxes: Vec<Rect>) {
+        let h = self.touched.len();
+        for &(x, y0, bw, bh) in &boxes {
+            // Past the right edge too, as drawn: readers clamp to the width.
+            self.touch(y0.min(h)..(y0 + bh).min(h), (x, x + bw));
+        }
         self.hud = boxes;
     }
 }
@@ -162,5 +196,33 @@ mod tests {
         shown.forget();
         shown.put(&mut frame, &img, Some(c), true);
         assert_eq!(&frame[44..48], &[211, 111, 11, 255], "the last pixel");
+    }
+
+    #[test]
+    fn it_knows_the_pixels_each_frame_wrote() {
+        let mut shown = Shown::default();
+        let mut frame = vec![0; 48];
+        assert_eq!(shown.touched(), None, "nothing known yet");
+        let c = Changes {
+            id: 1,
+            since: None,
+            rows: &[],
+        };
+        shown.put(&mut frame, &picture(0), Some(c), false);
+        assert_eq!(shown.touched(), Some(&[(0, 4); 3][..]), "copied whole");
+        shown.hud(vec![(1, 2, 2, 1)]);
+        let rows = [[0, 0], [2, 3], [0, 0]];
+        let c = Changes {
+            id: 2,
+            since: Some(1),
+            rows: &rows,
+        };
+        shown.put(&mut frame, &picture(9), Some(c), false);
+        // Row 1's change, and row 2 where the HUD box was put back.
+        assert_eq!(shown.touched(), Some(&[(0, 0), (2, 3), (1, 3)][..]));
+        shown.hud(vec![(0, 0, 1, 1)]);
+        assert_eq!(shown.touched(), Some(&[(0, 1), (2, 3), (1, 3)][..]));
+        shown.forget();
+        assert_eq!(shown.touched(), None);
     }
 }
