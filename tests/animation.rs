@@ -91,36 +91,41 @@ fn whole_apng_size(frames: &[Vec<u8>], w: u32, h: u32) -> usize {
     bytes.len()
 }
 
-#[test]
-fn an_animated_png_shows_the_sequence_byte_for_byte_in_a_third_of_the_bytes() {
-    let dir = common::temp_dir("apng");
-    let (w, h, frames) = (600, 300, 60);
-    let c = config(w, h);
-    let apng = dir.join("cradle.png");
-    let output = Output::Apng {
-        path: apng.clone(),
-        frames,
-        fps: 30.0,
-    };
-    render(&c, 0.0, &output, None, None).expect("renders");
+/// Renders `output` (the default cradle at 600x300, 60 frames at 30 fps, into
+/// `dir`) and the same frames as a PNG sequence; returns the sequence's pixels.
+fn render_beside_sequence(dir: &Path, output: &Output) -> Vec<Vec<u8>> {
+    let c = config(600, 300);
+    render(&c, 0.0, output, None, None).expect("renders");
     let seq = dir.join("seq");
     let sequence = Output::Sequence {
         dir: seq.clone(),
         first: 0,
-        frames,
+        frames: 60,
         fps: 30.0,
     };
     render(&c, 0.0, &sequence, None, None).expect("renders");
-    let shown = apng_frames(&apng);
-    assert_eq!(shown.len(), frames as usize);
-    let want: Vec<Vec<u8>> = (0..frames)
+    (0..60)
         .map(|n| png_pixels(&seq.join(format!("frame_{n:04}.png"))))
-        .collect();
+        .collect()
+}
+
+#[test]
+fn an_animated_png_shows_the_sequence_byte_for_byte_in_a_third_of_the_bytes() {
+    let dir = common::temp_dir("apng");
+    let apng = dir.join("cradle.png");
+    let output = Output::Apng {
+        path: apng.clone(),
+        frames: 60,
+        fps: 30.0,
+    };
+    let want = render_beside_sequence(&dir, &output);
+    let shown = apng_frames(&apng);
+    assert_eq!(shown.len(), 60);
     for (n, (got, want)) in shown.iter().zip(&want).enumerate() {
         assert!(got == want, "frame {n} differs from the sequence's");
     }
     let size = std::fs::metadata(&apng).unwrap().len() as usize;
-    let whole = whole_apng_size(&want, w, h);
+    let whole = whole_apng_size(&want, 600, 300);
     assert!(3 * size <= whole, "{size} bytes against {whole} whole");
     std::fs::remove_dir_all(&dir).ok();
 }
@@ -157,27 +162,16 @@ fn gif_frames(path: &Path) -> Vec<Vec<u8>> {
 #[test]
 fn a_gif_stores_changed_rectangles_on_one_palette_close_to_the_sequence() {
     let dir = common::temp_dir("gif-rects");
-    let (w, h, frames) = (600, 300, 60);
-    let c = config(w, h);
     let gif = dir.join("cradle.gif");
     let output = Output::Gif {
         path: gif.clone(),
-        frames,
+        frames: 60,
         fps: 30.0,
     };
-    render(&c, 0.0, &output, None, None).expect("renders");
-    let seq = dir.join("seq");
-    let sequence = Output::Sequence {
-        dir: seq.clone(),
-        first: 0,
-        frames,
-        fps: 30.0,
-    };
-    render(&c, 0.0, &sequence, None, None).expect("renders");
+    let sequence = render_beside_sequence(&dir, &output);
     let shown = gif_frames(&gif);
-    assert_eq!(shown.len(), frames as usize);
-    for (n, got) in shown.iter().enumerate() {
-        let want = png_pixels(&seq.join(format!("frame_{n:04}.png")));
+    assert_eq!(shown.len(), 60);
+    for (n, (got, want)) in shown.iter().zip(&sequence).enumerate() {
         let rgb: Vec<u8> = want
             .chunks_exact(4)
             .flat_map(|p| [p[0], p[1], p[2]])
