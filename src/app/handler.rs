@@ -150,13 +150,12 @@ impl App {
         let cpu1 = thread_cpu();
         let shows = surface.visible();
         let drawn = surface.draw(panel);
-        if shows && drawn.is_ok() && self.session.running() {
-            let now = std::time::Instant::now();
-            self.replay
-                .frame(now, surface.raw_frame(), surface.touched());
-        } else {
-            self.replay.pause();
-        }
+        // Every frame's writes reach the replay; it keeps those presented
+        // while the swing runs.
+        let keep = shows && drawn.is_ok() && self.session.running();
+        let now = std::time::Instant::now();
+        self.replay
+            .frame(now, surface.raw_frame(), surface.touched(), keep);
         if let Err(e) = drawn {
             self.fail(event_loop, e);
         }

@@ -30,6 +30,10 @@ const MAX_BYTES: usize = 256 << 20;
 /// window hidden, a pause): the frame after it follows by one frame's time.
 const STALL: f64 = 0.25;
 
+/// Frames are kept at most this often (s): 100 a second, more than a screen
+/// shows; a small window can present several hundred.
+const MIN_INTERVAL: f64 = 0.01;
+
 /// Frames waiting for the recording thread; more are dropped (and counted).
 const QUEUE: usize = 8;
 
@@ -104,9 +108,13 @@ pub struct Replay {
     /// A frame's time, averaged over the recent frames (s).
     typical: f64,
     /// The size of the frames sent, and whether the next must go whole (the
-    /// first, or one after a frame the thread missed).
+    /// first, one after a frame the thread missed, or after a frame that may
+    /// have written anywhere).
     sent_size: (u32, u32),
     whole_next: bool,
+    /// Per row, the pixels written since the frame last sent (`x0 >= x1`:
+    /// none): frames not kept (paused, hidden, too soon) write too.
+    pending: Vec<(u32, u32)>,
     /// Frames the recording thread could not take in time.
     pub dropped: u64,
 }
@@ -131,26 +139,38 @@ impl Replay {
             typical: 1.0 / 60.0,
             sent_size: (0, 0),
             whole_next: true,
+            pending: Vec::new(),
             dropped: 0,
         }
     }
 
-    /// A frame was presented at `now` while the swing runs: `pixels` of `size`,
-    /// BGRA when `bgra`, which wrote only the `touched` pixels of each row
-    /// (`x0..x1`; `None`: any may have changed).
+    /// The framebuffer was written at `now`: `pixels` of `size`, BGRA when
+    /// `bgra`, of which the frame wrote only the `touched` pixels of each row
+    /// (`x0..x1`; `None`: any may have changed). `keep`: the frame was
+    /// presented while the swing runs (else it is not kept, and the next kept
+    /// one follows the last by one frame's time).
     pub fn frame(
         &mut self,
         now: Instant,
         (size, bgra, pixels): ((u32, u32), bool, &[u8]),
         touched: Option<&[(u32, u32)]>,
+        keep: bool,
     ) {
         let Some(tx) = self.tx.clone() else {
             return;
         };
+        self.note(size, touched);
+        if !keep {
+            self.last = None;
+            return;
+        }
         let gap = self
             .last
             .map(|l| now.saturating_duration_since(l).as_secs_f64())
             .filter(|&g| g < STALL);
+        if gap.is_some_and(|g| g < MIN_INTERVAL) {
+            return;
+        }
         let step = gap.unwrap_or(self.typical);
         if let Some(g) = gap {
             self.typical = 0.9 * self.typical + 0.1 * g;
@@ -160,7 +180,7 @@ impl Replay {
         } else {
             self.clock + step
         };
-        let (spans, data) = self.changes(size, pixels, touched);
+        let (spans, data) = self.changes(size, pixels);
         let msg = Msg::Frame {
             at,
             size,
@@ -182,18 +202,34 @@ impl Replay {
         }
     }
 
-    /// What to send of `pixels` (of `size`): the `touched` spans of each row,
-    /// or every row whole when that is not known or the thread needs it.
-    fn changes(
-        &mut self,
-        size: (u32, u32),
-        pixels: &[u8],
-        touched: Option<&[(u32, u32)]>,
-    ) -> (Vec<Span>, Vec<u8>) {
+    /// Adds a frame's `touched` pixels (of a framebuffer of `size`) to what
+    /// was written since the frame last sent.
+    fn note(&mut self, size: (u32, u32), touched: Option<&[(u32, u32)]>) {
+        match touched.filter(|t| t.len() == size.1 as usize && size == self.sent_size) {
+            Some(t) if self.pending.len() == t.len() => {
+                for (p, &(a, b)) in self.pending.iter_mut().zip(t) {
+                    if a < b {
+                        *p = if p.0 < p.1 {
+                            (p.0.min(a), p.1.max(b))
+                        } else {
+                            (a, b)
+                        };
+                    }
+                }
+            }
+            Some(t) => self.pending = t.to_vec(),
+            None => self.whole_next = true,
+        }
+    }
+
+    /// What to send of `pixels` (of `size`): the pixels written since the
+    /// frame last sent, or every row whole when that is not known or the
+    /// thread needs it.
+    fn changes(&mut self, size: (u32, u32), pixels: &[u8]) -> (Vec<Span>, Vec<u8>) {
         let width = size.0;
-        let touched = touched.filter(|t| t.len() == size.1 as usize);
-        match touched {
-            Some(touched) if !self.whole_next && self.sent_size == size => {
+        let pending = std::mem::take(&mut self.pending);
+        match pending {
+            touched if !self.whole_next && self.sent_size == size && !touched.is_empty() => {
                 let spans: Vec<Span> = touched
                     .iter()
                     .zip(0..)
@@ -223,12 +259,6 @@ impl Replay {
                 (whole.collect(), pixels.to_vec())
             }
         }
-    }
-
-    /// The swing stopped (or the window hid): the next frame follows the last
-    /// by one frame's time.
-    pub fn pause(&mut self) {
-        self.last = None;
     }
 
     /// Clicks heard with the last frame, their times from it (s, as the live
@@ -273,8 +303,18 @@ impl Replay {
     }
 }
 
+/// Lowers the calling thread's priority (on Linux, nice 10): the frame loop,
+/// the tracer and the sound come first; the replay takes what they leave.
+fn behind_the_others() {
+    #[cfg(target_os = "linux")]
+    if let Err(e) = rustix::process::setpriority_process(Some(rustix::thread::gettid()), 10) {
+        tracing::debug!("the replay thread keeps its priority: {e}");
+    }
+}
+
 /// The recording thread: keeps the frames it is sent, saves on request.
 fn record(rx: &Receiver<Msg>, back: &SyncSender<Vec<u8>>) {
+    behind_the_others();
     let mut ring = Ring::default();
     while let Ok(msg) = rx.recv() {
         match msg {
@@ -294,7 +334,10 @@ fn record(rx: &Receiver<Msg>, back: &SyncSender<Vec<u8>>) {
                 let kept = ring.kept();
                 let spawned = std::thread::Builder::new()
                     .name("replay-save".into())
-                    .spawn(move || done(kept.write(&png, timbre)));
+                    .spawn(move || {
+                        behind_the_others();
+                        done(kept.write(&png, timbre));
+                    });
                 if let Err(e) = spawned {
                     tracing::error!("cannot start saving the replay: {e}");
                 }
@@ -825,11 +868,12 @@ mod tests {
             } else {
                 ms(5000 + 20 * k)
             };
-            if k == 20 {
-                replay.pause();
-            }
             let touched: Vec<(u32, u32)> = (0..H).map(|_| (0, W)).collect();
-            replay.frame(at, ((W, H), false, &f), Some(&touched));
+            if k == 20 {
+                // A frame presented while paused: not kept.
+                replay.frame(ms(2000), ((W, H), false, &f), Some(&touched), false);
+            }
+            replay.frame(at, ((W, H), false, &f), Some(&touched), true);
             // As a window presents: the thread keeps up between frames.
             std::thread::sleep(Duration::from_millis(2));
         }
@@ -857,5 +901,75 @@ mod tests {
             .expect_err("nothing to save");
         assert!(e.contains("nothing to save"), "{e}");
         assert!(!path.exists());
+    }
+
+    /// The last frame of an animated PNG as shown (dispose "none"; blend
+    /// "source", or "over" with transparent pixels keeping what was there).
+    fn last_frame(path: &std::path::Path) -> Vec<u8> {
+        let file = std::io::BufReader::new(std::fs::File::open(path).expect("written"));
+        let mut reader = png::Decoder::new(file).read_info().expect("a PNG");
+        let (w, h) = reader.info().size();
+        let n = reader
+            .info()
+            .animation_control
+            .expect("animated")
+            .num_frames;
+        let mut canvas = vec![0u8; (w * h * 4) as usize];
+        let mut buf = vec![0; reader.output_buffer_size().expect("sized")];
+        for _ in 0..n {
+            let info = reader.next_frame(&mut buf).expect("a frame");
+            let fc = reader.info().frame_control.expect("a frame control");
+            for y in 0..fc.height {
+                for x in 0..fc.width {
+                    let src = y as usize * info.line_size + x as usize * 4;
+                    let px = &buf[src..src + 4];
+                    let dst = (((fc.y_offset + y) * w + fc.x_offset + x) * 4) as usize;
+                    if fc.blend_op == png::BlendOp::Source || px[3] != 0 {
+                        canvas[dst..dst + 4].copy_from_slice(px);
+                    }
+                }
+            }
+        }
+        canvas
+    }
+
+    #[test]
+    fn what_frames_not_kept_wrote_reaches_the_next_kept_one() {
+        let dir = std::env::temp_dir().join(format!("nc-replay-p-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let mut replay = Replay::start();
+        let t0 = Instant::now();
+        let ms = |n: u64| t0 + Duration::from_millis(n);
+        let whole: Vec<(u32, u32)> = (0..H).map(|_| (0, W)).collect();
+        let only = |row: usize| -> Vec<(u32, u32)> {
+            (0..H as usize)
+                .map(|y| if y == row { (0, W) } else { (0, 0) })
+                .collect()
+        };
+        let mut f = frame(0);
+        replay.frame(ms(0), ((W, H), false, &f), Some(&whole), true);
+        std::thread::sleep(Duration::from_millis(2));
+        // Paused: row 2 changes (a HUD line, say), not kept.
+        f[(2 * W * 4) as usize] = 77;
+        replay.frame(ms(20), ((W, H), false, &f), Some(&only(2)), false);
+        // Running again, too soon after the last kept frame: row 9, not kept.
+        f[(9 * W * 4) as usize] = 99;
+        replay.frame(ms(25), ((W, H), false, &f), Some(&only(9)), true);
+        std::thread::sleep(Duration::from_millis(2));
+        replay.frame(ms(26), ((W, H), false, &f), Some(&only(9)), true);
+        std::thread::sleep(Duration::from_millis(2));
+        // Kept: row 5 changes; rows 2 and 9 must come with it.
+        f[(5 * W * 4) as usize] = 55;
+        replay.frame(ms(60), ((W, H), false, &f), Some(&only(5)), true);
+        std::thread::sleep(Duration::from_millis(2));
+        let (tx, rx) = std::sync::mpsc::channel();
+        let png = dir.join("p.png");
+        replay.save(png.clone(), Timbre::new(2e11, 0.29, 0.02, 0.26), move |r| {
+            tx.send(r).unwrap();
+        });
+        let saved = rx.recv_timeout(Duration::from_secs(30)).expect("answered");
+        assert!(saved.expect("saved").frames >= 2);
+        assert!(last_frame(&png) == f, "the last frame is the framebuffer");
+        std::fs::remove_dir_all(&dir).ok();
     }
 }
