@@ -165,7 +165,7 @@ fn frame_stays_clear_of_the_swing() {
     for angle in [10.0, 45.0, 90.0, 170.0] {
         let mut config = Config::default();
         config.start.angle_deg = angle;
-        let layout = newtons_cradle::scene::spawn::Layout::new(&config);
+        let layout = newtons_cradle::scene::layout::Layout::new(&config);
         let last = layout.pivot(config.cradle.balls - 1).x;
         let reach =
             config.cradle.length * f64::to_radians(angle.min(90.0)).sin() + config.cradle.radius;

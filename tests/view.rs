@@ -31,7 +31,8 @@ fn view_coords(
 
 #[test]
 fn the_whole_cradle_is_in_view_at_the_default_camera() {
-    use newtons_cradle::scene::view::{fitted_camera, frame_corners};
+    use newtons_cradle::scene::fit::fitted_camera;
+    use newtons_cradle::scene::view::frame_corners;
     // The default camera sees the default cradle as configured; with more balls
     // `camera.fit` moves it back until the frame is in view again.
     let default = Config::default();
@@ -64,7 +65,7 @@ fn in_band(sy: f64) -> bool {
 
 #[test]
 fn the_whole_swing_stays_in_view_at_lift_angles_over_90_degrees() {
-    use newtons_cradle::scene::view::fitted_camera;
+    use newtons_cradle::scene::fit::fitted_camera;
     // Balls swung to 120, 150 and 179 degrees rise above the rails; the
     // fitted view keeps each ball's whole swing (both sides, up to the lift
     // angle) clear of the window's status and help bands.
@@ -104,7 +105,7 @@ fn the_whole_swing_stays_in_view_at_lift_angles_over_90_degrees() {
 
 #[test]
 fn a_long_row_is_seen_along_its_length_with_every_ball_in_view_and_larger() {
-    use newtons_cradle::scene::view::fitted_camera;
+    use newtons_cradle::scene::fit::fitted_camera;
     // Head-on, the frame (longer than the row of balls) fits in 95% of the
     // picture's width at best, so a ball is at most 0.95 * width / balls pixels
     // across. Along the row the median ball must be at least 1.3 times that

@@ -5,7 +5,7 @@
 
 use crate::config::{Config, MAX_ANGLE_DEG};
 use crate::physics::Snapshot;
-use crate::scene::spawn::Layout;
+use crate::scene::layout::Layout;
 use crate::trace::Camera;
 use crate::trace::camera::CameraRays;
 use crate::trace::geometry::hit_sphere;
@@ -63,7 +63,7 @@ mod tests {
     use super::{dragged, pick};
     use crate::config::Config;
     use crate::scene::CradleWorld;
-    use crate::scene::spawn::Layout;
+    use crate::scene::layout::Layout;
     use crate::trace::camera::CameraRays;
     use glam::DVec3;
 

@@ -3,7 +3,8 @@
 //! offsets that survive a respawn; C drops them. Window-free, in f64.
 
 use crate::config::{CameraConfig, Config};
-use crate::scene::view::{FIT_SIDE, camera, fitted_camera_within};
+use crate::scene::fit::fitted_camera_within;
+use crate::scene::view::{FIT_SIDE, camera};
 use crate::trace;
 use glam::DVec3;
 
@@ -161,7 +162,7 @@ mod tests {
         assert!(Orbit::default().is_home());
         assert_eq!(
             Orbit::default().camera_config(&c),
-            crate::scene::view::fitted_camera(&c)
+            crate::scene::fit::fitted_camera(&c)
         );
     }
 }

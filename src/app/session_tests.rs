@@ -114,7 +114,7 @@ fn counts_stay_in_range_and_reset_restores_the_asset() {
 
 #[test]
 fn a_drag_from_the_left_becomes_the_lifted_count_and_angle() {
-    use crate::scene::spawn::Layout;
+    use crate::scene::layout::Layout;
     use crate::trace::camera::CameraRays;
     use glam::DVec3;
     let mut s = session();
@@ -375,7 +375,7 @@ fn n_advances_one_frame_at_the_rate_only_while_paused() {
 
 #[test]
 fn dragging_the_right_end_ball_lifts_it_and_letting_go_swings_it() {
-    use crate::scene::spawn::Layout;
+    use crate::scene::layout::Layout;
     use crate::trace::camera::CameraRays;
     use glam::DVec3;
     let mut s = session();

@@ -1,4 +1,4 @@
-//! The default view of a long row, for [`super::view::fitted_camera`]. Fitted
+//! The default view of a long row, for [`super::fit::fitted_camera`]. Fitted
 //! head-on, a row of many balls becomes a thin strip (200 balls: 6 pixels a
 //! ball across a 1200-pixel picture). Looked at along its length from the lifted
 //! (left) end, the near balls are large and every ball is still in view, as in a
@@ -6,7 +6,7 @@
 //! candidates by the median ball's size in the picture; it is used only when
 //! that beats the head-on fit by half again.
 
-use super::spawn::Layout;
+use super::layout::Layout;
 use super::view::{camera, fit_region, motion_bounds};
 use crate::config::{CameraConfig, Config};
 use crate::trace::camera::CameraRays;

@@ -5,6 +5,8 @@
 //! Physics -> Extract.
 
 pub mod components;
+pub mod fit;
+pub mod layout;
 pub mod long_row;
 pub mod record;
 pub mod spawn;

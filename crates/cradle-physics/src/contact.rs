@@ -1,32 +1,11 @@
-//! Contacts between neighbouring balls: the gap function whose roots are impacts,
-//! and the impulses that resolve them (ideal impacts with restitution).
+//! Contacts between neighbouring balls: the gap function whose roots are impacts
+//! (`params`, with the rest of the cradle's geometry), the contact normal and
+//! levers, and the impulses that resolve them (ideal impacts with restitution).
 //!
 //! Only neighbours collide: in one plane a ball cannot reach past its neighbour.
 
 use super::params::CradleParams;
-
-/// The contact test of neighbours `a` (left) and `b = a + 1`: `h = |c_b - c_a|^2 - 4 r^2`,
-/// which has the sign of the gap between the balls' surfaces. Written with
-/// `delta = theta_b - theta_a` and `mean = (theta_a + theta_b) / 2` as
-/// `gap (gap + 4 r) + 4 L sin(delta/2) (d cos(mean) + L sin(delta/2))`, so that it is
-/// exactly 0 for touching balls (`gap = 0`) at equal angles, as a resting chain is.
-#[must_use]
-pub fn gap_fn(p: &CradleParams, theta_a: f64, theta_b: f64) -> f64 {
-    let s = (0.5 * (theta_b - theta_a)).sin();
-    let mean = 0.5 * (theta_a + theta_b);
-    p.gap * (p.gap + 4.0 * p.radius)
-        + 4.0 * p.length * s * (p.spacing() * mean.cos() + p.length * s)
-}
-
-/// Overlap of neighbours at `theta_a`, `theta_b` (m), positive when the spheres
-/// interpenetrate: `2r - |c_b - c_a|`, written from the gap function without
-/// cancellation.
-#[must_use]
-pub fn overlap(p: &CradleParams, theta_a: f64, theta_b: f64) -> f64 {
-    let h = gap_fn(p, theta_a, theta_b);
-    let r2 = 2.0 * p.radius;
-    -h / (r2 + (r2 * r2 + h).max(0.0).sqrt())
-}
+pub use super::params::{gap_fn, overlap};
 
 /// Unit contact normal from ball `a` to ball `b = a + 1` and the levers
 /// `J = dc/dtheta . n` of each ball (m/rad).

@@ -1,5 +1,6 @@
 //! The physical parameters of a cradle and the quantities derived from them
-//! (pivot spacing, moment of inertia, natural frequency, energy, ball centres).
+//! (pivot spacing, moment of inertia, natural frequency, energy, ball centres,
+//! the gap and overlap of neighbours).
 
 use serde::{Deserialize, Serialize};
 
@@ -151,7 +152,7 @@ impl CradleParams {
         };
         let elastic: f64 = theta
             .windows(2)
-            .map(|w| super::contact::overlap(self, w[0], w[1]).max(0.0))
+            .map(|w| overlap(self, w[0], w[1]).max(0.0))
             .map(|d| 0.4 * k * d * d * d.sqrt())
             .sum();
         balls + elastic
@@ -199,4 +200,27 @@ pub fn swing_bound(integrator: Integrator, lift: usize, angle: f64) -> f64 {
     }
     let s = (lift as f64).sqrt() * (0.5 * angle).sin();
     2.0 * s.min(1.0).asin()
+}
+
+/// The contact test of neighbours `a` (left) and `b = a + 1`: `h = |c_b - c_a|^2 - 4 r^2`,
+/// which has the sign of the gap between the balls' surfaces. Written with
+/// `delta = theta_b - theta_a` and `mean = (theta_a + theta_b) / 2` as
+/// `gap (gap + 4 r) + 4 L sin(delta/2) (d cos(mean) + L sin(delta/2))`, so that it is
+/// exactly 0 for touching balls (`gap = 0`) at equal angles, as a resting chain is.
+#[must_use]
+pub fn gap_fn(p: &CradleParams, theta_a: f64, theta_b: f64) -> f64 {
+    let s = (0.5 * (theta_b - theta_a)).sin();
+    let mean = 0.5 * (theta_a + theta_b);
+    p.gap * (p.gap + 4.0 * p.radius)
+        + 4.0 * p.length * s * (p.spacing() * mean.cos() + p.length * s)
+}
+
+/// Overlap of neighbours at `theta_a`, `theta_b` (m), positive when the spheres
+/// interpenetrate: `2r - |c_b - c_a|`, written from the gap function without
+/// cancellation.
+#[must_use]
+pub fn overlap(p: &CradleParams, theta_a: f64, theta_b: f64) -> f64 {
+    let h = gap_fn(p, theta_a, theta_b);
+    let r2 = 2.0 * p.radius;
+    -h / (r2 + (r2 * r2 + h).max(0.0).sqrt())
 }
