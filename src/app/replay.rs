@@ -99,6 +99,9 @@ pub struct Saved {
 /// the recording thread.
 pub struct Replay {
     tx: Option<SyncSender<Msg>>,
+    /// The recording thread: joined when the window closes, after the saves
+    /// it started have finished (no half-written file is left behind).
+    thread: Option<std::thread::JoinHandle<()>>,
     /// Buffers handed back by the recording thread.
     spare: Receiver<Vec<u8>>,
     /// The recording's clock at the last frame (s), and when that frame was
@@ -131,8 +134,13 @@ impl Replay {
         if let Err(e) = &started {
             tracing::warn!("no replay (V): {e}");
         }
+        let (tx, thread) = match started {
+            Ok(thread) => (Some(tx), Some(thread)),
+            Err(_) => (None, None),
+        };
         Self {
-            tx: started.ok().map(|_| tx),
+            tx,
+            thread,
             spare,
             clock: 0.0,
             last: None,
@@ -312,10 +320,21 @@ fn behind_the_others() {
     }
 }
 
+impl Drop for Replay {
+    /// Ends the recording thread, once the saves it started have finished.
+    fn drop(&mut self) {
+        self.tx = None;
+        if let Some(thread) = self.thread.take() {
+            let _ = thread.join();
+        }
+    }
+}
+
 /// The recording thread: keeps the frames it is sent, saves on request.
 fn record(rx: &Receiver<Msg>, back: &SyncSender<Vec<u8>>) {
     behind_the_others();
     let mut ring = Ring::default();
+    let mut saves: Vec<std::thread::JoinHandle<()>> = Vec::new();
     while let Ok(msg) = rx.recv() {
         match msg {
             Msg::Frame {
@@ -338,11 +357,20 @@ fn record(rx: &Receiver<Msg>, back: &SyncSender<Vec<u8>>) {
                         behind_the_others();
                         done(kept.write(&png, timbre));
                     });
-                if let Err(e) = spawned {
-                    tracing::error!("cannot start saving the replay: {e}");
+                match spawned {
+                    Ok(save) => saves.push(save),
+                    Err(e) => tracing::error!("cannot start saving the replay: {e}"),
                 }
+                saves.retain(|s| !s.is_finished());
             }
         }
+    }
+    // The window has closed: a save under way finishes first.
+    for save in saves {
+        if !save.is_finished() {
+            tracing::info!("finishing the replay being saved");
+        }
+        let _ = save.join();
     }
 }
 
@@ -970,6 +998,32 @@ mod tests {
         let saved = rx.recv_timeout(Duration::from_secs(30)).expect("answered");
         assert!(saved.expect("saved").frames >= 2);
         assert!(last_frame(&png) == f, "the last frame is the framebuffer");
+        std::fs::remove_dir_all(&dir).ok();
+    }
+
+    #[test]
+    fn closing_the_window_lets_a_save_under_way_finish() {
+        let dir = std::env::temp_dir().join(format!("nc-replay-d-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let mut replay = Replay::start();
+        let t0 = Instant::now();
+        let whole: Vec<(u32, u32)> = (0..H).map(|_| (0, W)).collect();
+        for k in 0..50u64 {
+            let f = frame(k as usize);
+            let at = t0 + Duration::from_millis(20 * k);
+            replay.frame(at, ((W, H), false, &f), Some(&whole), true);
+            std::thread::sleep(Duration::from_millis(1));
+        }
+        let png = dir.join("d.png");
+        replay.save(png.clone(), Timbre::new(2e11, 0.29, 0.02, 0.26), |_| {});
+        // Closed at once: the file is there, whole, with no temporary left.
+        drop(replay);
+        assert!(animation_frames(&png) >= 2);
+        let names: Vec<String> = std::fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        assert_eq!(names, ["d.png"]);
         std::fs::remove_dir_all(&dir).ok();
     }
 }
