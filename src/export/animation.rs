@@ -57,8 +57,7 @@ pub fn crop(data: &[u8], width: u32, bytes: usize, rect: Rect) -> Vec<u8> {
 }
 
 /// The RGBA8 pixels of `rect` in `next` (rows of `width` pixels), with those
-/// equal to `last`'s transparent: put over `last` ([`put_over`]) they give
-/// `next`.
+/// equal to `last`'s transparent: put over `last` they give `next`.
 #[must_use]
 pub fn changes_over(last: &[u8], next: &[u8], width: u32, rect: Rect) -> Vec<u8> {
     let row = width as usize * 4;
@@ -74,24 +73,6 @@ pub fn changes_over(last: &[u8], next: &[u8], width: u32, rect: Rect) -> Vec<u8>
         }
     }
     out
-}
-
-/// Puts `changes` (from [`changes_over`]) over `canvas` (rows of `width`
-/// RGBA8 pixels): its transparent pixels keep the canvas's.
-pub fn put_over(canvas: &mut [u8], width: u32, rect: Rect, changes: &[u8]) {
-    let row = width as usize * 4;
-    let span = rect.width as usize * 4;
-    for (k, src) in changes.chunks_exact(span).enumerate() {
-        let at = (rect.y as usize + k) * row + rect.x as usize * 4;
-        for (dst, px) in canvas[at..at + span]
-            .chunks_exact_mut(4)
-            .zip(src.chunks_exact(4))
-        {
-            if px[3] != 0 {
-                dst.copy_from_slice(px);
-            }
-        }
-    }
 }
 
 /// Frame delays in units of `1 / unit` s whose sum follows the frame times,
@@ -133,7 +114,7 @@ impl Delays {
 
 #[cfg(test)]
 mod tests {
-    use super::{Rect, changed, changes_over, crop, put_over};
+    use super::{Rect, changed, changes_over, crop};
 
     #[test]
     fn the_changed_rectangle_holds_every_difference_and_no_more() {
@@ -159,6 +140,24 @@ mod tests {
         q[4 * 6 - 1] = 0;
         let r = changed(&p, &q, 3, 4).expect("they differ");
         assert_eq!((r.x, r.y, r.width, r.height), (2, 1, 1, 1));
+    }
+
+    /// Puts `changes` (from [`changes_over`]) over `canvas` (rows of `width`
+    /// RGBA8 pixels): its transparent pixels keep the canvas's.
+    fn put_over(canvas: &mut [u8], width: u32, rect: Rect, changes: &[u8]) {
+        let row = width as usize * 4;
+        let span = rect.width as usize * 4;
+        for (k, src) in changes.chunks_exact(span).enumerate() {
+            let at = (rect.y as usize + k) * row + rect.x as usize * 4;
+            for (dst, px) in canvas[at..at + span]
+                .chunks_exact_mut(4)
+                .zip(src.chunks_exact(4))
+            {
+                if px[3] != 0 {
+                    dst.copy_from_slice(px);
+                }
+            }
+        }
     }
 
     #[test]

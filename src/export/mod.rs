@@ -10,6 +10,6 @@ mod file;
 
 pub use animated_gif::GifWriter;
 pub use animated_png::ApngWriter;
-pub use animation::{Delays, Rect, changed, changes_over, put_over};
+pub use animation::Delays;
 pub use encode::{write_png, write_wav};
 pub use file::{AtomicFile, Kind, WriteError, check_output, clean_up_on_interrupt, write_all};
