@@ -649,5 +649,4 @@ fn smooth(old: f64, new: f64) -> f64 {
 }
 
 #[cfg(test)]
-#[path = "session_tests.rs"]
 mod tests;

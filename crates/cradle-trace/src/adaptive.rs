@@ -17,9 +17,10 @@
 use super::bits::{BitRoom, ascending};
 use super::color::Image;
 
-use super::render::{Frame, for_rows};
-use super::retrace::{Moved, Notes, RowMotion};
-use super::supersample::Supersamples;
+use super::frame::{Frame, for_rows};
+use super::motion::RowMotion;
+use super::retrace::{Moved, Notes, retrace_row};
+use super::supersample::{Supersamples, supersampled};
 use glam::Vec3;
 use rayon::prelude::*;
 
@@ -59,7 +60,7 @@ pub(crate) struct Layers {
     flips: Vec<Vec<u32>>,
 }
 
-/// Buffers a thread's rows of the picture use in turn ([`Frame::final_row`]).
+/// Buffers a thread's rows of the picture use in turn ([`final_row`]).
 #[derive(Default)]
 struct Scratch {
     redo: Vec<usize>,
@@ -68,252 +69,247 @@ struct Scratch {
     samples: Supersamples,
 }
 
-impl Frame<'_> {
-    /// Whether each pixel of `base` is an edge at `threshold`, row-major.
-    fn edges(&self, base: &[u8], threshold: f32) -> Vec<bool> {
-        let w = self.width();
-        (0..self.height())
-            .into_par_iter()
-            .flat_map_iter(|y| (0..w).map(move |x| self.is_edge(base, x, y, threshold)))
-            .collect()
-    }
+/// Whether each pixel of `base` is an edge at `threshold`, row-major.
+fn edges(frame: &Frame<'_>, base: &[u8], threshold: f32) -> Vec<bool> {
+    let w = frame.width();
+    (0..frame.height())
+        .into_par_iter()
+        .flat_map_iter(|y| (0..w).map(move |x| frame.is_edge(base, x, y, threshold)))
+        .collect()
+}
 
-    /// A full adaptive frame at `threshold`, and its layers.
-    pub(crate) fn adaptive_full(&self, threshold: f32) -> (Image, Layers) {
-        let (w, h) = (self.width(), self.height());
-        let mut base = Image {
-            width: w,
-            height: h,
-            rgba: vec![0; w as usize * h as usize * 4],
-        };
-        let n = w as usize;
-        let mut lin = vec![Vec3::ZERO; n * h as usize];
-        let base_rows = base
-            .rgba
-            .par_chunks_exact_mut(n * 4)
-            .zip(lin.par_chunks_exact_mut(n))
-            .enumerate()
-            .map(|(y, (row, lin))| self.row_with(y as u32, row, &CENTRE, Some(lin)))
-            .collect();
-        let edge = self.edges(&base.rgba, threshold);
-        let mut img = base.clone();
-        let edge_rows = for_rows(&mut img, true, |y, row| {
-            let span = y as usize * n..(y as usize + 1) * n;
-            let (flags, lin) = (&edge[span.clone()], &lin[span]);
-            let mut rm = RowMotion::new(n, true);
-            let xs: Vec<usize> = (0..n).filter(|&x| flags[x]).collect();
-            let mut samples = Supersamples::default();
-            self.supersampled(y, &xs, |x| lin[x], &mut samples);
-            let Supersamples { done, segs } = samples;
-            let mut done = done.into_iter();
-            for (x, px) in row.chunks_exact_mut(4).enumerate() {
-                rm.begin(true);
-                if flags[x]
-                    && let Some(((bytes, cells), span)) = done.next()
-                {
-                    px.copy_from_slice(&bytes);
-                    rm.cells[x] = cells;
-                    rm.segs.extend_from_slice(&segs[span]);
-                }
-            }
+/// A full adaptive frame at `threshold`, and its layers.
+pub(crate) fn adaptive_full(frame: &Frame<'_>, threshold: f32) -> (Image, Layers) {
+    let (w, h) = (frame.width(), frame.height());
+    let mut base = Image {
+        width: w,
+        height: h,
+        rgba: vec![0; w as usize * h as usize * 4],
+    };
+    let n = w as usize;
+    let mut lin = vec![Vec3::ZERO; n * h as usize];
+    let base_rows = base
+        .rgba
+        .par_chunks_exact_mut(n * 4)
+        .zip(lin.par_chunks_exact_mut(n))
+        .enumerate()
+        .map(|(y, (row, lin))| frame.row_with(y as u32, row, &CENTRE, Some(lin)))
+        .collect();
+    let edge = edges(frame, &base.rgba, threshold);
+    let mut img = base.clone();
+    let edge_rows = for_rows(&mut img, true, |y, row| {
+        let span = y as usize * n..(y as usize + 1) * n;
+        let (flags, lin) = (&edge[span.clone()], &lin[span]);
+        let mut rm = RowMotion::new(n, true);
+        let xs: Vec<usize> = (0..n).filter(|&x| flags[x]).collect();
+        let mut samples = Supersamples::default();
+        supersampled(frame, y, &xs, |x| lin[x], &mut samples);
+        let Supersamples { done, segs } = samples;
+        let mut done = done.into_iter();
+        for (x, px) in row.chunks_exact_mut(4).enumerate() {
             rm.begin(true);
-            rm.seal();
-            rm.room();
-            rm
-        });
-        let layers = Layers {
-            base,
-            base_rows,
-            edge,
-            lin,
-            edge_rows,
-            dirty: vec![Vec::new(); h as usize],
-            changed: vec![Vec::new(); h as usize],
-            flips: vec![Vec::new(); h as usize],
-        };
-        (img, layers)
-    }
+            if flags[x]
+                && let Some(((bytes, cells), span)) = done.next()
+            {
+                px.copy_from_slice(&bytes);
+                rm.cells[x] = cells;
+                rm.segs.extend_from_slice(&segs[span]);
+            }
+        }
+        rm.begin(true);
+        rm.seal();
+        rm.room();
+        rm
+    });
+    let layers = Layers {
+        base,
+        base_rows,
+        edge,
+        lin,
+        edge_rows,
+        dirty: vec![Vec::new(); h as usize],
+        changed: vec![Vec::new(); h as usize],
+        flips: vec![Vec::new(); h as usize],
+    };
+    (img, layers)
+}
 
-    /// The next adaptive frame into `img`, from `layers` after `moved`, noting
-    /// per row in `written` the pixels whose bytes it may have changed: returns
-    /// how many pixels it traced (base and supersampled).
-    pub(crate) fn adaptive_next(
-        &self,
-        threshold: f32,
-        layers: &mut Layers,
-        (img, written): (&mut Image, &mut [[u32; 2]]),
-        moved: &Moved,
-    ) -> usize {
-        let (w, h) = (self.width() as usize, self.height() as usize);
-        let stride = w * 4;
-        // The base layer, noting per row the pixels motion may have changed and
-        // those whose bytes changed.
-        let mut traced: usize = layers
-            .base
-            .rgba
-            .par_chunks_exact_mut(stride)
-            .zip(layers.base_rows.par_iter_mut())
-            .zip(layers.lin.par_chunks_exact_mut(w))
-            .zip(
-                layers
-                    .dirty
-                    .par_iter_mut()
-                    .zip(layers.changed.par_iter_mut()),
-            )
-            .enumerate()
-            .map(|(y, (((row, rm), lin), (dirty, changed)))| {
-                changed.clear();
-                let mut notes = Notes {
-                    dirty: std::mem::take(dirty),
-                    changed: std::mem::take(changed),
-                    lin,
-                };
-                let n = self.retrace_row(y as u32, row, rm, (moved, &CENTRE), Some(&mut notes));
-                (*dirty, *changed) = (notes.dirty, notes.changed);
-                n
-            })
-            .sum();
-        let (base, lin, xs) = (&layers.base.rgba, &layers.lin, &layers.changed);
-        // The edge test again at each changed pixel and its 4-neighbours, in
-        // place: per row, the pixels whose flag flipped.
-        layers
-            .edge
-            .par_chunks_exact_mut(w)
-            .zip(layers.flips.par_iter_mut())
-            .enumerate()
-            .for_each(|(y, (flags, flipped))| {
-                flipped.clear();
-                let beside = [y.checked_sub(1), Some(y + 1).filter(|&v| v < h)];
-                let above_below = beside
-                    .into_iter()
-                    .flatten()
-                    .flat_map(|v| xs[v].iter().map(|&x| x as usize));
-                let here = xs[y]
-                    .iter()
-                    .flat_map(|&x| x.saturating_sub(1) as usize..(x as usize + 2).min(w));
-                let mut room = BitRoom::new();
-                let mut bits = room.row(w);
-                above_below.chain(here).for_each(|x| bits.set(x));
-                for x in bits.iter() {
-                    let now = self.is_edge(base, x as u32, y as u32, threshold);
-                    if now != flags[x] {
-                        flags[x] = now;
-                        flipped.push(x as u32);
-                    }
+/// The next adaptive frame into `img`, from `layers` after `moved`, noting
+/// per row in `written` the pixels whose bytes it may have changed: returns
+/// how many pixels it traced (base and supersampled).
+pub(crate) fn adaptive_next(
+    frame: &Frame<'_>,
+    threshold: f32,
+    layers: &mut Layers,
+    (img, written): (&mut Image, &mut [[u32; 2]]),
+    moved: &Moved,
+) -> usize {
+    let (w, h) = (frame.width() as usize, frame.height() as usize);
+    let stride = w * 4;
+    // The base layer, noting per row the pixels motion may have changed and
+    // those whose bytes changed.
+    let mut traced: usize = layers
+        .base
+        .rgba
+        .par_chunks_exact_mut(stride)
+        .zip(layers.base_rows.par_iter_mut())
+        .zip(layers.lin.par_chunks_exact_mut(w))
+        .zip(
+            layers
+                .dirty
+                .par_iter_mut()
+                .zip(layers.changed.par_iter_mut()),
+        )
+        .enumerate()
+        .map(|(y, (((row, rm), lin), (dirty, changed)))| {
+            changed.clear();
+            let mut notes = Notes {
+                dirty: std::mem::take(dirty),
+                changed: std::mem::take(changed),
+                lin,
+            };
+            let n = retrace_row(frame, y as u32, row, rm, (moved, &CENTRE), Some(&mut notes));
+            (*dirty, *changed) = (notes.dirty, notes.changed);
+            n
+        })
+        .sum();
+    let (base, lin, xs) = (&layers.base.rgba, &layers.lin, &layers.changed);
+    // The edge test again at each changed pixel and its 4-neighbours, in
+    // place: per row, the pixels whose flag flipped.
+    layers
+        .edge
+        .par_chunks_exact_mut(w)
+        .zip(layers.flips.par_iter_mut())
+        .enumerate()
+        .for_each(|(y, (flags, flipped))| {
+            flipped.clear();
+            let beside = [y.checked_sub(1), Some(y + 1).filter(|&v| v < h)];
+            let above_below = beside
+                .into_iter()
+                .flatten()
+                .flat_map(|v| xs[v].iter().map(|&x| x as usize));
+            let here = xs[y]
+                .iter()
+                .flat_map(|&x| x.saturating_sub(1) as usize..(x as usize + 2).min(w));
+            let mut room = BitRoom::new();
+            let mut bits = room.row(w);
+            above_below.chain(here).for_each(|x| bits.set(x));
+            for x in bits.iter() {
+                let now = frame.is_edge(base, x as u32, y as u32, threshold);
+                if now != flags[x] {
+                    flags[x] = now;
+                    flipped.push(x as u32);
                 }
-            });
-        let (edge, dirty, flips) = (&layers.edge, &layers.dirty, &layers.flips);
-        traced += img
-            .rgba
-            .par_chunks_exact_mut(stride)
-            .zip(layers.edge_rows.par_iter_mut())
-            .zip(written.par_iter_mut())
-            .enumerate()
-            .map_init(Scratch::default, |scratch, (y, ((row, rm), written))| {
-                let span = y * w..(y + 1) * w;
-                let base = Base {
-                    bytes: &base[y * stride..(y + 1) * stride],
-                    lin: &lin[span.clone()],
-                    dirty: &dirty[y],
-                    changed: &xs[y],
-                };
-                let at = (y as u32, row, rm);
-                let (n, xs) = self.final_row(at, &base, (&edge[span], &flips[y]), moved, scratch);
-                *written = xs;
-                n
-            })
-            .sum::<usize>();
-        traced
-    }
+            }
+        });
+    let (edge, dirty, flips) = (&layers.edge, &layers.dirty, &layers.flips);
+    traced += img
+        .rgba
+        .par_chunks_exact_mut(stride)
+        .zip(layers.edge_rows.par_iter_mut())
+        .zip(written.par_iter_mut())
+        .enumerate()
+        .map_init(Scratch::default, |scratch, (y, ((row, rm), written))| {
+            let span = y * w..(y + 1) * w;
+            let base = Base {
+                bytes: &base[y * stride..(y + 1) * stride],
+                lin: &lin[span.clone()],
+                dirty: &dirty[y],
+                changed: &xs[y],
+            };
+            let at = (y as u32, row, rm);
+            let (n, xs) = final_row(frame, at, &base, (&edge[span], &flips[y]), moved, scratch);
+            *written = xs;
+            n
+        })
+        .sum::<usize>();
+    traced
+}
 
-    /// Row `y` of the picture (`row`, with its edge record `rm`): base colours
-    /// where not an edge, samples kept or traced again where an edge. `is`: the
-    /// row's edge flags; `flips`: the pixels whose flag this frame flipped.
-    /// Returns how many pixels it supersampled, and the pixels `x0..x1` whose
-    /// bytes it may have changed (`[0, 0]`: none).
-    fn final_row(
-        &self,
-        (y, row, rm): (u32, &mut [u8], &mut RowMotion),
-        base: &Base<'_>,
-        (is, flips): (&[bool], &[u32]),
-        moved: &Moved,
-        scratch: &mut Scratch,
-    ) -> (usize, [u32; 2]) {
-        let w = is.len();
-        let Base {
-            bytes,
-            lin,
-            dirty,
-            changed,
-        } = *base;
-        if flips.is_empty()
-            && dirty.is_empty()
-            && changed.is_empty()
-            && !moved.reaches(y as usize, rm)
-        {
-            return (0, [0, 0]);
-        }
-        // The pixels written: those whose base bytes changed (not in order),
-        // whose flag flipped, and the edges supersampled again.
-        let mut span = changed
-            .iter()
-            .chain(flips)
-            .fold((u32::MAX, 0), |(a, b), &x| (a.min(x), b.max(x + 1)));
-        let show_base = |row: &mut [u8], x: usize| {
-            row[x * 4..x * 4 + 4].copy_from_slice(&bytes[x * 4..x * 4 + 4]);
-        };
-        for &x in changed {
-            if !is[x as usize] {
-                show_base(row, x as usize);
-            }
-        }
-        // Pixels that stop being edges show the base colour and drop their
-        // record; new edges are supersampled.
-        let Scratch {
-            redo,
-            sorted,
-            touched,
-            samples,
-        } = scratch;
-        redo.clear();
-        for &x in flips {
-            let x = x as usize;
-            if is[x] {
-                redo.push(x);
-            } else {
-                show_base(row, x);
-                rm.clear(x);
-            }
-        }
-        // So are edges whose other samples' segments come near a moved object
-        // (only edge pixels have cells in `rm`, so its blocks skip the others),
-        // and those whose base pixel, sample 0, was traced again.
-        if moved.dirty(y as usize, rm, false, touched) {
-            redo.extend(touched.iter().map(|&x| x as usize).filter(|&x| is[x]));
-        }
-        redo.extend(dirty.iter().map(|&x| x as usize).filter(|&x| is[x]));
-        let written = |(a, b): (u32, u32)| if a < b { [a, b] } else { [0, 0] };
-        if redo.is_empty() && flips.is_empty() {
-            return (0, written(span));
-        }
-        ascending(w, redo.iter().copied(), sorted);
-        if let (Some(&a), Some(&b)) = (sorted.first(), sorted.last()) {
-            span = (span.0.min(a as u32), span.1.max(b as u32 + 1));
-        }
-        self.supersampled(y, sorted, |x| lin[x], samples);
-        for (&x, ((bytes, cells), span)) in sorted.iter().zip(&samples.done) {
-            row[x * 4..x * 4 + 4].copy_from_slice(bytes);
-            rm.retrace(x, |out| {
-                out.extend_from_slice(&samples.segs[span.clone()]);
-                (*cells, ())
-            });
-        }
-        let traced = sorted.len();
-        rm.compact();
-        // The blocks of the pixels whose cells changed: those traced again and
-        // those that stopped being edges (each ascending).
-        rm.reseal(sorted.iter().copied());
-        rm.reseal(flips.iter().map(|&x| x as usize).filter(|&x| !is[x]));
-        (traced, written(span))
+/// Row `y` of the picture (`row`, with its edge record `rm`): base colours
+/// where not an edge, samples kept or traced again where an edge. `is`: the
+/// row's edge flags; `flips`: the pixels whose flag this frame flipped.
+/// Returns how many pixels it supersampled, and the pixels `x0..x1` whose
+/// bytes it may have changed (`[0, 0]`: none).
+fn final_row(
+    frame: &Frame<'_>,
+    (y, row, rm): (u32, &mut [u8], &mut RowMotion),
+    base: &Base<'_>,
+    (is, flips): (&[bool], &[u32]),
+    moved: &Moved,
+    scratch: &mut Scratch,
+) -> (usize, [u32; 2]) {
+    let w = is.len();
+    let Base {
+        bytes,
+        lin,
+        dirty,
+        changed,
+    } = *base;
+    if flips.is_empty() && dirty.is_empty() && changed.is_empty() && !moved.reaches(y as usize, rm)
+    {
+        return (0, [0, 0]);
     }
+    // The pixels written: those whose base bytes changed (not in order),
+    // whose flag flipped, and the edges supersampled again.
+    let mut span = changed
+        .iter()
+        .chain(flips)
+        .fold((u32::MAX, 0), |(a, b), &x| (a.min(x), b.max(x + 1)));
+    let show_base = |row: &mut [u8], x: usize| {
+        row[x * 4..x * 4 + 4].copy_from_slice(&bytes[x * 4..x * 4 + 4]);
+    };
+    for &x in changed {
+        if !is[x as usize] {
+            show_base(row, x as usize);
+        }
+    }
+    // Pixels that stop being edges show the base colour and drop their
+    // record; new edges are supersampled.
+    let Scratch {
+        redo,
+        sorted,
+        touched,
+        samples,
+    } = scratch;
+    redo.clear();
+    for &x in flips {
+        let x = x as usize;
+        if is[x] {
+            redo.push(x);
+        } else {
+            show_base(row, x);
+            rm.clear(x);
+        }
+    }
+    // So are edges whose other samples' segments come near a moved object
+    // (only edge pixels have cells in `rm`, so its blocks skip the others),
+    // and those whose base pixel, sample 0, was traced again.
+    if moved.dirty(y as usize, rm, false, touched) {
+        redo.extend(touched.iter().map(|&x| x as usize).filter(|&x| is[x]));
+    }
+    redo.extend(dirty.iter().map(|&x| x as usize).filter(|&x| is[x]));
+    let written = |(a, b): (u32, u32)| if a < b { [a, b] } else { [0, 0] };
+    if redo.is_empty() && flips.is_empty() {
+        return (0, written(span));
+    }
+    ascending(w, redo.iter().copied(), sorted);
+    if let (Some(&a), Some(&b)) = (sorted.first(), sorted.last()) {
+        span = (span.0.min(a as u32), span.1.max(b as u32 + 1));
+    }
+    supersampled(frame, y, sorted, |x| lin[x], samples);
+    for (&x, ((bytes, cells), span)) in sorted.iter().zip(&samples.done) {
+        row[x * 4..x * 4 + 4].copy_from_slice(bytes);
+        rm.retrace(x, |out| {
+            out.extend_from_slice(&samples.segs[span.clone()]);
+            (*cells, ())
+        });
+    }
+    let traced = sorted.len();
+    rm.compact();
+    // The blocks of the pixels whose cells changed: those traced again and
+    // those that stopped being edges (each ascending).
+    rm.reseal(sorted.iter().copied());
+    rm.reseal(flips.iter().map(|&x| x as usize).filter(|&x| !is[x]));
+    (traced, written(span))
 }

@@ -8,7 +8,7 @@
 
 use super::bvh::Bvh;
 use super::geometry::Aabb;
-use super::prepared::{Geom, bounds};
+use super::geometry::{Geom, bounds};
 use super::scene::{Light, Shape};
 use super::wide::{Chunk, WideList, push_chunks};
 use glam::Vec3;

@@ -15,15 +15,15 @@ pub struct Image {
 /// Buckets of the floats in [2^-14, 1]: 256 per octave (the top 8 bits of the
 /// mantissa), each holding at most one threshold (neighbouring thresholds are
 /// at least 0.9% apart, a bucket spans at most 0.4%).
-const BUCKET_SHIFT: u32 = 15;
+pub(crate) const BUCKET_SHIFT: u32 = 15;
 /// The bucket of 2^-14 (below every threshold, the first is 1.5e-4).
-const FIRST_BUCKET: u32 = (1.0f32 / 16384.0).to_bits() >> BUCKET_SHIFT;
+pub(crate) const FIRST_BUCKET: u32 = (1.0f32 / 16384.0).to_bits() >> BUCKET_SHIFT;
 /// Buckets up to and including that of 1.0.
 const BUCKETS: usize = ((1.0f32.to_bits() >> BUCKET_SHIFT) - FIRST_BUCKET + 1) as usize;
 
 /// The low 15 bits of a float: its place within its bucket. Two positive
 /// floats of one bucket compare as these bits do.
-const IN_BUCKET: u32 = (1 << BUCKET_SHIFT) - 1;
+pub(crate) const IN_BUCKET: u32 = (1 << BUCKET_SHIFT) - 1;
 /// A bucket entry's place of the next threshold when it lies past the bucket:
 /// above every [`IN_BUCKET`] value.
 const PAST: u32 = 1 << BUCKET_SHIFT;
@@ -55,6 +55,11 @@ fn thresholds() -> [f32; 256] {
         };
         linear as f32
     })
+}
+
+/// The bucket entries of [`srgb8`] (see `Table`), for the AVX2 build's gathers.
+pub(crate) fn srgb_entries() -> &'static [u32] {
+    &table().entries
 }
 
 fn table() -> &'static Table {
@@ -120,68 +125,24 @@ pub(crate) fn rgba8_lanes(r: [f32; 8], g: [f32; 8], b: [f32; 8]) -> [u32; 8] {
     out
 }
 
-/// [`rgba8_lanes`] in AVX2: per channel the same clamp (`max` with 0 takes 0 for
-/// NaN and -0), the bucket's entry by one gather, one comparison of bits; the
-/// channels are packed in the registers.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-#[inline]
-#[must_use]
-pub(crate) fn rgba8_avx2(r: &[f32; 8], g: &[f32; 8], b: &[f32; 8]) -> [u32; 8] {
-    use std::arch::x86_64::{
-        __m256i, _mm256_add_epi32, _mm256_and_si256, _mm256_castps_si256, _mm256_cmpgt_epi32,
-        _mm256_i32gather_epi32, _mm256_loadu_ps, _mm256_max_epi32, _mm256_max_ps, _mm256_min_ps,
-        _mm256_or_si256, _mm256_set1_epi32, _mm256_set1_ps, _mm256_setzero_ps,
-        _mm256_setzero_si256, _mm256_slli_epi32, _mm256_srli_epi32, _mm256_storeu_si256,
-        _mm256_sub_epi32,
-    };
-    let t = table();
-    let count = |linear: &[f32; 8]| -> __m256i {
-        // SAFETY: loads the eight floats of `linear`; the bucket index lies in
-        // 0..BUCKETS (the value is clamped to [0, 1], the index to >= 0), so
-        // the gather reads in bounds.
-        #[expect(unsafe_code, reason = "AVX2 loads and a gather within bounds")]
-        unsafe {
-            let v = _mm256_loadu_ps(linear.as_ptr());
-            let c = _mm256_castps_si256(_mm256_min_ps(
-                _mm256_max_ps(v, _mm256_setzero_ps()),
-                _mm256_set1_ps(1.0),
-            ));
-            let bucket = _mm256_max_epi32(
-                _mm256_sub_epi32(
-                    _mm256_srli_epi32::<{ BUCKET_SHIFT as i32 }>(c),
-                    _mm256_set1_epi32(FIRST_BUCKET as i32),
-                ),
-                _mm256_setzero_si256(),
-            );
-            let entry = _mm256_i32gather_epi32::<4>(t.entries.as_ptr().cast(), bucket);
-            let at = _mm256_and_si256(entry, _mm256_set1_epi32(0xFFFF));
-            let here = _mm256_and_si256(c, _mm256_set1_epi32(IN_BUCKET as i32));
-            // low + 1 + (-1 where at > here): both below 2^16, so signed
-            // comparison is exact.
-            _mm256_add_epi32(
-                _mm256_add_epi32(_mm256_srli_epi32::<16>(entry), _mm256_set1_epi32(1)),
-                _mm256_cmpgt_epi32(at, here),
-            )
-        }
-    };
-    let (r, g, b) = (count(r), count(g), count(b));
-    let px = _mm256_or_si256(
-        _mm256_or_si256(r, _mm256_slli_epi32::<8>(g)),
-        _mm256_or_si256(_mm256_slli_epi32::<16>(b), _mm256_set1_epi32(-16_777_216)),
-    );
-    let mut out = [0u32; 8];
-    // SAFETY: stores the eight u32 of `out`.
-    #[expect(unsafe_code, reason = "an AVX store within bounds")]
-    unsafe {
-        _mm256_storeu_si256(out.as_mut_ptr().cast(), px);
-    }
-    out
-}
-
 #[cfg(test)]
 mod tests {
     use super::{BUCKET_SHIFT, BUCKETS, FIRST_BUCKET, rgba8_lanes, srgb8};
+
+    /// The lane builds' `rgba8` as a kernel.
+    struct Rgba8<'a>(&'a [f32; 8], &'a [f32; 8], &'a [f32; 8]);
+
+    #[expect(
+        clippy::inline_always,
+        reason = "a kernel inlines into its build's entry point, which compiles it for AVX2 in the AVX2 build"
+    )]
+    impl crate::simd::Kernel for Rgba8<'_> {
+        type Output = [u32; 8];
+        #[inline(always)]
+        fn run<S: crate::simd::Simd>(self, s: S) -> [u32; 8] {
+            s.rgba8(self.0, self.1, self.2)
+        }
+    }
 
     /// The definition: the count of thresholds at or below the value (NaN: 0).
     fn by_search(linear: f32) -> u8 {
@@ -231,17 +192,10 @@ mod tests {
         for chunk in v.chunks_exact(24) {
             let lane = |k: usize| -> [f32; 8] { std::array::from_fn(|i| chunk[k * 8 + i]) };
             let (r, g, b) = (lane(0), lane(1), lane(2));
-            #[cfg(target_arch = "x86_64")]
-            let avx = std::arch::is_x86_feature_detected!("avx2").then(|| {
-                // SAFETY: the CPU has AVX2, checked just above.
-                #[expect(unsafe_code, reason = "calling the AVX2 build under test")]
-                unsafe {
-                    super::rgba8_avx2(&r, &g, &b)
-                }
-            });
-            #[cfg(not(target_arch = "x86_64"))]
-            let avx = None;
-            for px in std::iter::once(rgba8_lanes(r, g, b)).chain(avx) {
+            let builds = crate::simd::Build::all()
+                .into_iter()
+                .map(|build| build.run(Rgba8(&r, &g, &b)));
+            for px in std::iter::once(rgba8_lanes(r, g, b)).chain(builds) {
                 for i in 0..8 {
                     let want = [srgb8(r[i]), srgb8(g[i]), srgb8(b[i]), 255];
                     assert_eq!(px[i].to_le_bytes(), want, "{} {} {}", r[i], g[i], b[i]);

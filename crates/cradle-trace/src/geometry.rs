@@ -1,10 +1,15 @@
 //! Rays and their intersections with the three shapes: sphere, finite capped
-//! cylinder of any axis, plane. Nearest hit beyond `T_MIN` only.
+//! cylinder of any axis, plane; a shape's bounds and its hit test made ready
+//! ([`Geom`]), and what a ray hit ([`Hit`]). Nearest hit beyond `T_MIN` only.
 
+use super::scene::Shape;
 use glam::Vec3;
 
 /// Hits closer than this (m) are ignored: secondary rays start on a surface.
 pub const T_MIN: f32 = 1e-5;
+
+/// Secondary rays start this far (m) off the surface, along its normal.
+pub(crate) const SURFACE_OFFSET: f32 = 2e-5;
 
 /// A ray with a unit direction.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -198,5 +203,85 @@ impl Aabb {
         let near = t1.min(t2).max_element().max(T_MIN);
         let far = t1.max(t2).min_element().min(t_max);
         near <= far
+    }
+}
+
+/// What a ray hit.
+#[derive(Debug, Clone, Copy)]
+pub struct Hit {
+    /// Distance along the ray.
+    pub t: f32,
+    /// Index of the object in the scene.
+    pub object: usize,
+    /// Unit normal, turned to face the ray.
+    pub normal: Vec3,
+    /// Whether the ray met the surface from outside (the normal was not turned).
+    pub outside: bool,
+}
+
+impl Hit {
+    /// The hit at `t` on `object`, whose outward normal there is `n`.
+    #[must_use]
+    pub(crate) fn facing(ray: &Ray, t: f32, object: usize, n: Vec3) -> Self {
+        let inside = n.dot(ray.dir) > 0.0;
+        Self {
+            t,
+            object,
+            normal: if inside { -n } else { n },
+            outside: !inside,
+        }
+    }
+}
+
+/// Bounds of a shape; `None` for unbounded planes.
+pub(crate) fn bounds(shape: &Shape) -> Option<Aabb> {
+    match *shape {
+        Shape::Sphere { centre, radius } => Some(Aabb {
+            min: centre - radius,
+            max: centre + radius,
+        }),
+        Shape::Cylinder { a, b, radius } => {
+            // The caps are discs of this radius; their extent along each world axis
+            // is radius * sqrt(1 - u_i^2).
+            let u = (b - a).normalize();
+            let ext = radius * (Vec3::ONE - u * u).max(Vec3::ZERO).sqrt();
+            Some(Aabb {
+                min: a.min(b) - ext,
+                max: a.max(b) + ext,
+            })
+        }
+        Shape::Plane { .. } => None,
+    }
+}
+
+/// A shape with what its hit test needs worked out once per frame.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum Geom {
+    Sphere { centre: Vec3, radius: f32 },
+    Cylinder(Cylinder),
+    Plane { point: Vec3, normal: Vec3 },
+}
+
+impl Geom {
+    pub(crate) fn new(shape: &Shape) -> Self {
+        match *shape {
+            Shape::Sphere { centre, radius } => Self::Sphere { centre, radius },
+            Shape::Cylinder { a, b, radius } => Self::Cylinder(Cylinder::new(a, b, radius)),
+            Shape::Plane { point, normal } => Self::Plane { point, normal },
+        }
+    }
+}
+
+/// `v.floor() as i64`, exactly (saturating, NaN to 0), without a call to libm's
+/// `floorf` (the portable x86-64 build has no rounding instruction): truncate,
+/// then step down where truncation went up.
+#[inline]
+#[must_use]
+pub fn floor_i64(v: f32) -> i64 {
+    let t = v as i64;
+    if (t as f32) > v {
+        t.saturating_sub(1)
+    } else {
+        t
     }
 }

@@ -3,12 +3,15 @@
 //! other pixel's bytes, so the result equals a full render byte for byte.
 
 use super::adaptive::Layers;
+use super::adaptive::{adaptive_full, adaptive_next};
 use super::camera::CameraRays;
 use super::color::Image;
+use super::frame::{Frame, RenderOptions};
 use super::geometry::Aabb;
+use super::motion::RowMotion;
 use super::motion::{Cells, MotionGrid, Near, NearSet};
-use super::render::{Frame, RenderOptions};
-use super::retrace::{Moved, Piece, RowMotion, Spans};
+use super::render::image;
+use super::retrace::{Moved, Piece, Spans, retrace_row};
 use super::scene::Scene;
 use glam::Vec3;
 use rayon::prelude::*;
@@ -158,7 +161,7 @@ fn shape_cells(grid: &MotionGrid, shape: &super::scene::Shape) -> Cells {
             })
             .fold(0, |m, c| m | c);
     }
-    super::prepared::bounds(shape).map_or(Cells::MAX, |bx| grid.cells(bx.min, bx.max))
+    super::geometry::bounds(shape).map_or(Cells::MAX, |bx| grid.cells(bx.min, bx.max))
 }
 
 impl Incremental {
@@ -192,7 +195,7 @@ impl Incremental {
             self.written.resize(img.height as usize, [0, 0]);
             if let (Some(threshold), Some(layers)) = (adaptive, self.layers.as_mut()) {
                 let out = (img, &mut self.written[..]);
-                self.retraced = frame.adaptive_next(threshold, layers, out, &moved);
+                self.retraced = adaptive_next(&frame, threshold, layers, out, &moved);
             } else {
                 let (stride, w) = (img.width as usize * 4, img.width);
                 self.retraced = img
@@ -203,7 +206,7 @@ impl Incremental {
                     .enumerate()
                     .map(|(y, ((row, rm), written))| {
                         let at = (&moved, frame.offsets());
-                        let n = frame.retrace_row(y as u32, row, rm, at, None);
+                        let n = retrace_row(&frame, y as u32, row, rm, at, None);
                         // A traced row may have changed anywhere in its runs.
                         *written = if n > 0 { [0, w] } else { [0, 0] };
                         n
@@ -213,10 +216,10 @@ impl Incremental {
             self.since = Some(self.id);
         } else {
             let (img, rows, layers) = if let Some(threshold) = adaptive {
-                let (img, layers) = frame.adaptive_full(threshold);
+                let (img, layers) = adaptive_full(&frame, threshold);
                 (img, Vec::new(), Some(layers))
             } else {
-                let (img, rows) = frame.image(true);
+                let (img, rows) = image(&frame, true);
                 (img, rows, None)
             };
             self.retraced = img.width as usize * img.height as usize;

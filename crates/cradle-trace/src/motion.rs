@@ -12,8 +12,11 @@ use glam::Vec3;
 
 mod batch;
 mod near;
+mod row;
 pub(crate) use batch::Batch;
-pub use near::{Near, NearSet};
+pub use batch::NearSet;
+pub use near::Near;
+pub(crate) use row::{BLOCK, RowMotion, SUPER};
 
 /// A set of cells of the motion grid, one bit each.
 pub type Cells = u128;

@@ -26,15 +26,12 @@
 )]
 
 use super::camera::CameraRays;
-use super::color::rgba8_lanes;
+use super::geometry::SURFACE_OFFSET;
 use super::geometry::T_MIN;
 use super::motion::{Cells, Motion, MotionGrid, Seg};
 use super::prepared::Prepared;
 use super::scene::{Material, Shape};
-use super::shade::SURFACE_OFFSET;
-#[cfg(target_arch = "x86_64")]
-use super::simd::Avx2;
-use super::simd::Portable;
+use super::simd::{Build, Kernel, Simd};
 use super::tiles::{Reaching, Tiles};
 use glam::Vec3;
 use std::cell::{Cell, RefCell};
@@ -52,6 +49,7 @@ mod nearest;
 mod notes;
 mod objects;
 mod occlusion;
+mod rays;
 mod samples;
 pub(crate) mod spare;
 mod vec;
@@ -248,42 +246,19 @@ impl Packet<'_, '_> {
         out: &mut [u8],
     ) -> u8 {
         self.fresh();
-        #[cfg(target_arch = "x86_64")]
-        if let Some(s) = Avx2::detect() {
-            // SAFETY: the token proves the CPU has AVX2.
-            #[expect(unsafe_code, reason = "the one run-time dispatch to the AVX2 build")]
-            return unsafe { self.floor_avx2(s, floor, others, (x0, y), out) };
-        }
-        let (done, c) = self.floor_lanes(Portable, floor, others, x0, y);
-        if done != 0 {
-            write(out, done, rgba8_lanes(c.x, c.y, c.z));
-        }
-        done
-    }
-
-    /// [`Self::floor_lanes`] compiled for AVX2 (8 lanes in one register), with
-    /// the sRGB bytes by AVX2's gathers; no FMA, which AVX2 does not imply.
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
-    fn floor_avx2(
-        &self,
-        s: Avx2,
-        floor: &Floor<'_>,
-        others: &[usize],
-        (x0, y): (u32, u32),
-        out: &mut [u8],
-    ) -> u8 {
-        let (done, c) = self.floor_lanes(s, floor, others, x0, y);
-        if done != 0 {
-            write(out, done, super::color::rgba8_avx2(&c.x, &c.y, &c.z));
-        }
-        done
+        Build::detect().run(FloorKernel {
+            pk: self,
+            floor,
+            others,
+            at: (x0, y),
+            out,
+        })
     }
 
     /// The packet's lanes in lane build `S`: the lanes written (a bit each) and
     /// their linear colours, also kept in `colors`.
     #[inline(always)]
-    fn floor_lanes<S: bounce::Bounces>(
+    fn floor_lanes<S: Simd>(
         &self,
         s: S,
         floor: &Floor<'_>,
@@ -353,7 +328,7 @@ impl Packet<'_, '_> {
             self.shade_lanes(s, floor, (x0, y), on_floor, &hit)
         };
         if front != 0 {
-            let ray = bounce::Bounce {
+            let ray = rays::Bounce {
                 origin: splat3(s, c.origin),
                 d,
                 depth: 0,
@@ -383,5 +358,33 @@ fn write(out: &mut [u8], done: u8, px: [u32; LANES]) {
         if done >> i & 1 != 0 {
             o.copy_from_slice(&p.to_le_bytes());
         }
+    }
+}
+
+/// [`Packet::floor`]'s lanes as a lane kernel: trace them, and write the
+/// lanes done as RGBA into `out`.
+struct FloorKernel<'k, 'p, 'a> {
+    pk: &'k Packet<'p, 'a>,
+    floor: &'k Floor<'k>,
+    others: &'k [usize],
+    at: (u32, u32),
+    out: &'k mut [u8],
+}
+
+#[expect(
+    clippy::inline_always,
+    reason = "a kernel inlines into its build's entry point, which compiles it for AVX2 in the AVX2 build"
+)]
+impl Kernel for FloorKernel<'_, '_, '_> {
+    type Output = u8;
+    #[inline(always)]
+    fn run<S: Simd>(self, s: S) -> u8 {
+        let (done, c) = self
+            .pk
+            .floor_lanes(s, self.floor, self.others, self.at.0, self.at.1);
+        if done != 0 {
+            write(self.out, done, s.rgba8(&c.x, &c.y, &c.z));
+        }
+        done
     }
 }

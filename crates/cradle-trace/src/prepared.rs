@@ -4,79 +4,13 @@
 
 use super::bvh::{Bvh, runs};
 use super::casters::Casters;
-use super::geometry::{Aabb, Cylinder, Ray, hit_plane, hit_sphere};
-use super::scene::{Scene, Shape};
-use super::shade::Phong;
+use super::geometry::{Aabb, Geom, Hit, Ray, bounds, hit_plane, hit_sphere};
+use super::material::Phong;
+use super::scene::Scene;
 use super::shadow::Footprints;
 use super::wide::{W, WIDE_AT_MOST, WideBoxes};
 use glam::Vec3;
 use std::cell::Cell;
-
-/// What a ray hit.
-#[derive(Debug, Clone, Copy)]
-pub struct Hit {
-    /// Distance along the ray.
-    pub t: f32,
-    /// Index of the object in the scene.
-    pub object: usize,
-    /// Unit normal, turned to face the ray.
-    pub normal: Vec3,
-    /// Whether the ray met the surface from outside (the normal was not turned).
-    pub outside: bool,
-}
-
-impl Hit {
-    /// The hit at `t` on `object`, whose outward normal there is `n`.
-    #[must_use]
-    pub(crate) fn facing(ray: &Ray, t: f32, object: usize, n: Vec3) -> Self {
-        let inside = n.dot(ray.dir) > 0.0;
-        Self {
-            t,
-            object,
-            normal: if inside { -n } else { n },
-            outside: !inside,
-        }
-    }
-}
-
-/// Bounds of a shape; `None` for unbounded planes.
-pub(crate) fn bounds(shape: &Shape) -> Option<Aabb> {
-    match *shape {
-        Shape::Sphere { centre, radius } => Some(Aabb {
-            min: centre - radius,
-            max: centre + radius,
-        }),
-        Shape::Cylinder { a, b, radius } => {
-            // The caps are discs of this radius; their extent along each world axis
-            // is radius * sqrt(1 - u_i^2).
-            let u = (b - a).normalize();
-            let ext = radius * (Vec3::ONE - u * u).max(Vec3::ZERO).sqrt();
-            Some(Aabb {
-                min: a.min(b) - ext,
-                max: a.max(b) + ext,
-            })
-        }
-        Shape::Plane { .. } => None,
-    }
-}
-
-/// A shape with what its hit test needs worked out once per frame.
-#[derive(Debug, Clone, Copy)]
-pub(crate) enum Geom {
-    Sphere { centre: Vec3, radius: f32 },
-    Cylinder(Cylinder),
-    Plane { point: Vec3, normal: Vec3 },
-}
-
-impl Geom {
-    pub(crate) fn new(shape: &Shape) -> Self {
-        match *shape {
-            Shape::Sphere { centre, radius } => Self::Sphere { centre, radius },
-            Shape::Cylinder { a, b, radius } => Self::Cylinder(Cylinder::new(a, b, radius)),
-            Shape::Plane { point, normal } => Self::Plane { point, normal },
-        }
-    }
-}
 
 /// The scene with its acceleration data.
 #[derive(Debug, Clone)]
@@ -304,6 +238,41 @@ impl<'a> Prepared<'a> {
         }
         best.get()
             .map(|(t, _, object, n)| Hit::facing(ray, t, object, n))
+    }
+
+    /// The linear scan of [`Prepared::closest`] (the planes, then the bounded
+    /// objects in query order, each tested through its box with the nearest hit
+    /// so far as the limit), eight boxes at a time: the same boxes pass, so it
+    /// finds the same hit. Object `skip` is not tested.
+    pub(crate) fn closest_wide(&self, ray: &Ray, t_max: f32, skip: usize) -> Option<Hit> {
+        let best: Cell<Option<(f32, usize, Vec3)>> = Cell::new(None);
+        let limit = || best.get().map_or(t_max, |b| b.0);
+        let consider = |i: usize| {
+            if i == skip {
+                return;
+            }
+            if let Some((t, n)) = self.hit_object(i, ray)
+                && t < limit()
+            {
+                best.set(Some((t, i, n)));
+            }
+        };
+        for &i in &self.planes {
+            consider(i);
+        }
+        let inv = ray.dir.recip();
+        if self.group.hit(ray, inv, t_max) {
+            self.wide.list().scan(ray, inv, limit, |i, b, chunk| {
+                // A nearer hit found within this chunk: the box again, with it.
+                let now = limit();
+                if now >= chunk || b.hit(ray, inv, now) {
+                    consider(i);
+                }
+                false
+            });
+        }
+        best.get()
+            .map(|(t, object, n)| Hit::facing(ray, t, object, n))
     }
 
     /// Turns the hierarchy on or off for secondary rays (off: each tests every

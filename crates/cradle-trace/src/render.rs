@@ -1,353 +1,84 @@
-//! Turning a scene into pixels: one function per pixel, rows in parallel with
-//! rayon ([`render`]) or serially ([`render_serial`], with
-//! [`RenderOptions::FULL`] the reference); both run the same per-pixel code, so
-//! their bytes are equal. `incremental` reuses [`Frame`] for its partial frames.
+//! The full frame: every pixel at every sample, or with adaptive
+//! anti-aliasing one centre sample and then every sample at that picture's
+//! edges; rows in parallel with rayon ([`render`]) or serially
+//! ([`render_serial`], with [`RenderOptions::FULL`] the reference). Both run
+//! the same per-pixel code (`frame`), so their bytes are equal.
 
-use super::camera::CameraRays;
-use super::color::{Image, srgb8};
-use super::geometry::Aabb;
-use super::motion::{Cells, Motion, MotionGrid, Seg};
-use super::packet::{LANES, Packet};
-use super::prepared::Prepared;
-use super::retrace::RowMotion;
-use super::sampling::sample_offsets;
+use super::color::Image;
+use super::frame::{Frame, for_rows};
+use super::motion::{Cells, RowMotion};
 use super::scene::Scene;
-use super::shade::{radiance_bound, trace, trace_primary};
-use super::supersample::Supersamples;
-use super::tiles::Tiles;
+use super::supersample::{Supersamples, supersampled};
 use glam::Vec3;
-use rayon::prelude::*;
 use std::sync::atomic::{AtomicU32, Ordering};
 
-/// Which work-skipping the renderer may use. Each leaves the picture byte for byte
-/// as the full render makes it (tested); turning them off gives that reference.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct RenderOptions {
-    /// Primary rays test only the objects whose screen bounds cover their tile.
-    pub tile_culling: bool,
-    /// Shadow rays from a plane test only the objects whose shadow can fall there.
-    pub shadow_culling: bool,
-    /// Secondary rays walk a bounding volume hierarchy instead of every box.
-    pub bvh: bool,
+pub use super::frame::RenderOptions;
+
+/// The whole picture, rows in parallel or one after another (the same bytes):
+/// every pixel at every sample, or with adaptive anti-aliasing one centre
+/// sample first and then every sample at the edges of that picture. Returns it
+/// with each row's motion cells and segments (adaptive: cells only, as such
+/// frames are never reused).
+pub(crate) fn image(frame: &Frame<'_>, parallel: bool) -> (Image, Vec<RowMotion>) {
+    image_counting(frame, parallel, None)
 }
 
-impl RenderOptions {
-    /// Every skip on: what the app, `render` and `bench` use.
-    pub const FAST: Self = Self {
-        tile_culling: true,
-        shadow_culling: true,
-        bvh: true,
-    };
-    /// Nothing skipped: the reference the skips are tested against.
-    pub const FULL: Self = Self {
-        tile_culling: false,
-        shadow_culling: false,
-        bvh: false,
-    };
-}
-
-/// Everything one row needs, shared by the serial and parallel paths.
-pub(crate) struct Frame<'a> {
-    prepared: Prepared<'a>,
-    tiles: Option<Tiles>,
-    camera: CameraRays,
-    offsets: Vec<(f32, f32)>,
-    bound: f32,
-    width: u32,
-    height: u32,
-    pub(crate) motion: Option<MotionGrid>,
-    /// Adaptive anti-aliasing: the byte difference above which a pixel is an edge.
-    edge: Option<f32>,
-}
-
-impl<'a> Frame<'a> {
-    /// `track`: note which pixels' rays enter the motion box (incremental frames only).
-    pub(crate) fn new(scene: &'a Scene, options: RenderOptions, track: bool) -> Self {
-        let prepared = Prepared::new(scene)
-            .with_shadow_culling(options.shadow_culling)
-            .with_bvh(options.bvh);
-        let bound = radiance_bound(&prepared);
-        let camera = CameraRays::new(&scene.camera, scene.size.0, scene.size.1);
-        Self {
-            tiles: options
-                .tile_culling
-                .then(|| Tiles::new(&prepared, &camera, scene.size.0, scene.size.1)),
-            camera,
-            offsets: sample_offsets(scene.samples),
-            prepared,
-            bound,
-            width: scene.size.0,
-            height: scene.size.1,
-            edge: scene
-                .adaptive
-                .filter(|_| scene.samples > 1)
-                .map(|t| t * 255.0),
-            motion: scene
-                .motion_bounds
-                .filter(|_| track)
-                .map(|(min, max)| MotionGrid::new(Aabb { min, max })),
-        }
-    }
-
-    /// The linear colour of pixel `(x, y)` from samples at `offsets` (after
-    /// `first`, the colour of a sample traced before, where given: the sum then
-    /// makes the same additions in the same order as with that sample first in
-    /// `offsets`), and the motion cells its rays passed through; their segments in
-    /// the motion box are appended to `segs`.
-    fn pixel(
-        &self,
-        (x, y): (u32, u32),
-        first: Option<Vec3>,
-        offsets: &[(f32, f32)],
-        segs: &mut Vec<Seg>,
-    ) -> (Vec3, Cells) {
-        let mut motion = Motion::with(self.motion, std::mem::take(segs));
-        let n = offsets.len() + usize::from(first.is_some());
-        // `Sum` for Vec3 is this fold from zero.
-        let start = Vec3::ZERO + first.unwrap_or(Vec3::ZERO);
-        let sum = offsets
-            .iter()
-            .map(|&(dx, dy)| {
-                let ray = self.camera.ray(x as f32 + dx, y as f32 + dy);
-                match &self.tiles {
-                    Some(t) => {
-                        trace_primary(&self.prepared, &ray, (t, x, y), self.bound, &mut motion)
-                    }
-                    None => trace(&self.prepared, &ray, 0, 1.0, self.bound, &mut motion),
-                }
-            })
-            .fold(start, |a, b| a + b);
-        *segs = motion.segs;
-        (sum / n as f32, motion.mask)
-    }
-
-    /// Traces pixel `at` into `px` at `offsets` after sample `first` (see
-    /// [`Self::pixel`]): its motion cells and linear colour; its segments go to
-    /// `segs`.
-    pub(crate) fn put(
-        &self,
-        at: (u32, u32),
-        px: &mut [u8],
-        (first, offsets): (Option<Vec3>, &[(f32, f32)]),
-        segs: &mut Vec<Seg>,
-    ) -> (Cells, Vec3) {
-        let (c, mask) = self.pixel(at, first, offsets, segs);
-        px.copy_from_slice(&[srgb8(c.x), srgb8(c.y), srgb8(c.z), 255]);
-        (mask, c)
-    }
-
-    /// Adaptive anti-aliasing's edge threshold (a byte difference), if on.
-    pub(crate) fn edge(&self) -> Option<f32> {
-        self.edge
-    }
-
-    /// Picture height (px).
-    pub(crate) fn height(&self) -> u32 {
-        self.height
-    }
-
-    /// Picture width (px).
-    pub(crate) fn width(&self) -> u32 {
-        self.width
-    }
-
-    /// The pixel's sample offsets.
-    pub(crate) fn offsets(&self) -> &[(f32, f32)] {
-        &self.offsets
-    }
-
-    /// The packet tracer for samples at `offsets`: centre samples with tiles.
-    pub(crate) fn packets(&self, offsets: &[(f32, f32)]) -> Option<Packet<'_, 'a>> {
-        let tiles = self.tiles.as_ref().filter(|_| offsets == [(0.5, 0.5)])?;
-        Some(Packet {
-            p: &self.prepared,
-            cam: &self.camera,
-            tiles,
-            bound: self.bound,
-            motion: self.motion,
-            marks: std::cell::Cell::new([0; LANES]),
-            // The thread's spare buffers for a packet's segments.
-            segs: std::cell::RefCell::new(crate::packet::spare::take(self.motion.is_some())),
-            colors: std::cell::Cell::new([[0.0; LANES]; 3]),
-        })
-    }
-
-    /// Traces a whole row with `offsets`; returns each pixel's motion cells and
-    /// segments in a tracked frame (else an empty record). Centre samples go in packets
-    /// where the tile allows. With `lin`, each pixel's linear colour goes there.
-    pub(crate) fn row_with(
-        &self,
-        y: u32,
-        out: &mut [u8],
-        offsets: &[(f32, f32)],
-        mut lin: Option<&mut [Vec3]>,
-    ) -> RowMotion {
-        let track = self.motion.is_some();
-        let mut rm = RowMotion::new(self.width as usize, track);
-        let packets = self.packets(offsets);
-        let mut x = 0;
-        while x < self.width {
-            let lanes = LANES as u32;
-            if let Some(pk) = &packets
-                && x + lanes <= self.width
-            {
-                let span = &mut out[x as usize * 4..(x + lanes) as usize * 4];
-                let done = pk.run(x, y, span);
-                if let Some(l) = lin.as_deref_mut() {
-                    for i in (0..LANES).filter(|i| done & (1 << i) != 0) {
-                        l[x as usize + i] = pk.color(i);
-                    }
-                }
-                if done == 0xFF && !track {
-                    // All eight written, nothing to note.
-                    x += lanes;
-                    continue;
-                }
-                let marks = if track { pk.marks() } else { [0; LANES] };
-                for i in x..x + lanes {
-                    rm.begin(track);
-                    if done & (1 << (i - x)) != 0 {
-                        if track {
-                            rm.cells[i as usize] = marks[(i - x) as usize];
-                            pk.lane_segs((i - x) as usize, &mut rm.segs);
-                        }
-                        continue;
-                    }
-                    let px = &mut out[i as usize * 4..i as usize * 4 + 4];
-                    let (cells, c) = self.put((i, y), px, (None, offsets), &mut rm.segs);
-                    if track {
-                        rm.cells[i as usize] = cells;
-                    }
-                    if let Some(l) = lin.as_deref_mut() {
-                        l[i as usize] = c;
-                    }
-                }
-                x += lanes;
-                continue;
-            }
-            rm.begin(track);
-            let px = &mut out[x as usize * 4..x as usize * 4 + 4];
-            let (cells, c) = self.put((x, y), px, (None, offsets), &mut rm.segs);
-            if track {
-                rm.cells[x as usize] = cells;
-            }
-            if let Some(l) = lin.as_deref_mut() {
-                l[x as usize] = c;
-            }
-            x += 1;
-        }
-        rm.begin(track);
-        rm.seal();
-        rm.room();
-        rm
-    }
-
-    /// Whether pixel `(x, y)` of a one-sample picture differs from a 4-neighbour
-    /// by more than `edge` in some channel.
-    pub(crate) fn is_edge(&self, base: &[u8], x: u32, y: u32, edge: f32) -> bool {
-        let at = |x: u32, y: u32| (y as usize * self.width as usize + x as usize) * 4;
-        let here = &base[at(x, y)..at(x, y) + 3];
-        let differs = |nx: u32, ny: u32| {
-            let there = &base[at(nx, ny)..at(nx, ny) + 3];
-            here.iter()
-                .zip(there)
-                .any(|(a, b)| f32::from(a.abs_diff(*b)) > edge)
-        };
-        (x > 0 && differs(x - 1, y))
-            || (x + 1 < self.width && differs(x + 1, y))
-            || (y > 0 && differs(x, y - 1))
-            || (y + 1 < self.height && differs(x, y + 1))
-    }
-
-    /// The whole picture, rows in parallel or one after another (the same bytes):
-    /// every pixel at every sample, or with adaptive anti-aliasing one centre
-    /// sample first and then every sample at the edges of that picture. Returns it
-    /// with each row's motion cells and segments (adaptive: cells only, as such
-    /// frames are never reused).
-    pub(crate) fn image(&self, parallel: bool) -> (Image, Vec<RowMotion>) {
-        self.image_counting(parallel, None)
-    }
-
-    /// [`Self::image`], adding 1 to `rows_done` as each row of each pass is
-    /// done (with adaptive anti-aliasing, two passes: `2 * height` in all).
-    pub(crate) fn image_counting(
-        &self,
-        parallel: bool,
-        rows_done: Option<&AtomicU32>,
-    ) -> (Image, Vec<RowMotion>) {
-        let count = || {
-            if let Some(c) = rows_done {
-                c.fetch_add(1, Ordering::Relaxed);
-            }
-        };
-        let mut img = Image {
-            width: self.width,
-            height: self.height,
-            rgba: vec![0; self.width as usize * self.height as usize * 4],
-        };
-        let Some(edge) = self.edge else {
-            let rows = for_rows(&mut img, parallel, |y, row| {
-                let motion = self.row_with(y, row, &self.offsets, None);
-                count();
-                motion
-            });
-            return (img, rows);
-        };
-        let (mut rows, lin): (Vec<RowMotion>, Vec<Vec<Vec3>>) =
-            for_rows(&mut img, parallel, |y, row| {
-                let mut lin = vec![Vec3::ZERO; self.width as usize];
-                let motion = self.row_with(y, row, &[(0.5, 0.5)], Some(&mut lin));
-                count();
-                (motion, lin)
-            })
-            .into_iter()
-            .unzip();
-        let base = img.rgba.clone();
-        let edges = for_rows(&mut img, parallel, |y, row| {
-            let xs: Vec<usize> = (0..self.width)
-                .filter(|&x| self.is_edge(&base, x, y, edge))
-                .map(|x| x as usize)
-                .collect();
-            let mut cells: Vec<Cells> = vec![0; self.width as usize];
-            let mut done = Supersamples::default();
-            self.supersampled(y, &xs, |x| lin[y as usize][x], &mut done);
-            for (&x, ((bytes, c), _)) in xs.iter().zip(done.done) {
-                row[x * 4..x * 4 + 4].copy_from_slice(&bytes);
-                cells[x] = c;
-            }
-            count();
-            cells
-        });
-        for (m, e) in rows.iter_mut().zip(edges) {
-            m.cells.iter_mut().zip(e).for_each(|(a, b)| *a |= b);
-            m.untrack();
-            m.seal();
-        }
-        (img, rows)
-    }
-}
-
-/// Runs `f(y, row)` over the rows of `img`, in parallel on the current rayon pool
-/// or serially, and collects what it returns per row.
-pub(crate) fn for_rows<R: Send>(
-    img: &mut Image,
+/// [`Self::image`], adding 1 to `rows_done` as each row of each pass is
+/// done (with adaptive anti-aliasing, two passes: `2 * height` in all).
+fn image_counting(
+    frame: &Frame<'_>,
     parallel: bool,
-    f: impl Fn(u32, &mut [u8]) -> R + Sync,
-) -> Vec<R> {
-    let stride = img.width as usize * 4;
-    if parallel {
-        img.rgba
-            .par_chunks_exact_mut(stride)
-            .enumerate()
-            .map(|(y, row)| f(y as u32, row))
-            .collect()
-    } else {
-        img.rgba
-            .chunks_exact_mut(stride)
-            .enumerate()
-            .map(|(y, row)| f(y as u32, row))
-            .collect()
+    rows_done: Option<&AtomicU32>,
+) -> (Image, Vec<RowMotion>) {
+    let count = || {
+        if let Some(c) = rows_done {
+            c.fetch_add(1, Ordering::Relaxed);
+        }
+    };
+    let mut img = Image {
+        width: frame.width(),
+        height: frame.height(),
+        rgba: vec![0; frame.width() as usize * frame.height() as usize * 4],
+    };
+    let Some(edge) = frame.edge() else {
+        let rows = for_rows(&mut img, parallel, |y, row| {
+            let motion = frame.row_with(y, row, frame.offsets(), None);
+            count();
+            motion
+        });
+        return (img, rows);
+    };
+    let (mut rows, lin): (Vec<RowMotion>, Vec<Vec<Vec3>>) =
+        for_rows(&mut img, parallel, |y, row| {
+            let mut lin = vec![Vec3::ZERO; frame.width() as usize];
+            let motion = frame.row_with(y, row, &[(0.5, 0.5)], Some(&mut lin));
+            count();
+            (motion, lin)
+        })
+        .into_iter()
+        .unzip();
+    let base = img.rgba.clone();
+    let edges = for_rows(&mut img, parallel, |y, row| {
+        let xs: Vec<usize> = (0..frame.width())
+            .filter(|&x| frame.is_edge(&base, x, y, edge))
+            .map(|x| x as usize)
+            .collect();
+        let mut cells: Vec<Cells> = vec![0; frame.width() as usize];
+        let mut done = Supersamples::default();
+        supersampled(frame, y, &xs, |x| lin[y as usize][x], &mut done);
+        for (&x, ((bytes, c), _)) in xs.iter().zip(done.done) {
+            row[x * 4..x * 4 + 4].copy_from_slice(&bytes);
+            cells[x] = c;
+        }
+        count();
+        cells
+    });
+    for (m, e) in rows.iter_mut().zip(edges) {
+        m.cells.iter_mut().zip(e).for_each(|(a, b)| *a |= b);
+        m.untrack();
+        m.seal();
     }
+    (img, rows)
 }
 
 /// One row after another on this thread, with every skip: the serial twin of
@@ -361,13 +92,13 @@ pub fn render_serial(scene: &Scene) -> Image {
 /// `RenderOptions::FULL` is the reference renderer.
 #[must_use]
 pub fn render_serial_with(scene: &Scene, options: RenderOptions) -> Image {
-    Frame::new(scene, options, false).image(false).0
+    image(&Frame::new(scene, options, false), false).0
 }
 
 /// Rows in parallel on the current rayon pool; byte-identical to [`render_serial`].
 #[must_use]
 pub fn render(scene: &Scene) -> Image {
-    Frame::new(scene, RenderOptions::FAST, false).image(true).0
+    image(&Frame::new(scene, RenderOptions::FAST, false), true).0
 }
 
 /// [`render`], adding 1 to `rows_done` as each row of each pass is done, so
@@ -376,9 +107,12 @@ pub fn render(scene: &Scene) -> Image {
 /// the edges). The same picture, byte for byte.
 #[must_use]
 pub fn render_counting(scene: &Scene, rows_done: &AtomicU32) -> Image {
-    Frame::new(scene, RenderOptions::FAST, false)
-        .image_counting(true, Some(rows_done))
-        .0
+    image_counting(
+        &Frame::new(scene, RenderOptions::FAST, false),
+        true,
+        Some(rows_done),
+    )
+    .0
 }
 
 /// A rayon pool of `threads` workers (0: one per core).
@@ -390,5 +124,4 @@ pub fn pool(threads: usize) -> Result<rayon::ThreadPool, rayon::ThreadPoolBuildE
 }
 
 #[cfg(test)]
-#[path = "render_tests.rs"]
 mod tests;

@@ -1,6 +1,13 @@
-//! Which build of the SIMD code runs: the AVX2 one where the CPU has it (asked
-//! at run time, so the binary stays portable x86-64), else the portable one
-//! (SSE2 on x86-64, whatever the target has elsewhere). Both give the same bits.
+//! The floor under every lane kernel: the lane operations ([`Simd`]) in two
+//! builds, and which of them runs. The AVX2 build runs where the CPU has it
+//! (asked at run time, so the binary stays portable x86-64), else the portable
+//! one (SSE2 on x86-64, whatever the target has elsewhere). Both give the same
+//! bits.
+//!
+//! This module holds all of the tracer's `unsafe` code: the AVX intrinsics in
+//! `avx2`, each behind the [`Avx2`] token, and the one dispatch point into code
+//! compiled for AVX2, `Avx2`'s [`Simd::enter`] (reached through [`Build::run`]). A kernel
+//! is written once as a [`Kernel`], generic over the lane build.
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -21,6 +28,62 @@ pub fn force_portable(on: bool) {
 #[must_use]
 pub(crate) fn avx2() -> bool {
     !PORTABLE.load(Ordering::Relaxed) && std::arch::is_x86_feature_detected!("avx2")
+}
+
+/// A piece of lane code written once over the lane build: [`Build::run`]
+/// runs it in the build the CPU allows. Its `run` must be `#[inline(always)]`,
+/// so that the AVX2 entry point compiles it (and what it inlines) for AVX2.
+pub(crate) trait Kernel {
+    /// What the kernel gives.
+    type Output;
+    /// The kernel in lane build `s`.
+    fn run<S: Simd>(self, s: S) -> Self::Output;
+}
+
+/// The lane build that runs: chosen once (by [`Build::detect`]) and handed to
+/// the kernels' calls.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum Build {
+    /// The portable build.
+    Portable,
+    /// The AVX2 build, with the token that proves the CPU has it.
+    #[cfg(target_arch = "x86_64")]
+    Avx2(Avx2),
+}
+
+impl Build {
+    /// The AVX2 build where the CPU has it and [`force_portable`] is off,
+    /// else the portable one.
+    #[inline]
+    #[must_use]
+    pub(crate) fn detect() -> Self {
+        #[cfg(target_arch = "x86_64")]
+        if let Some(s) = Avx2::detect() {
+            return Self::Avx2(s);
+        }
+        Self::Portable
+    }
+
+    /// Runs `k` in this build.
+    #[inline]
+    pub(crate) fn run<K: Kernel>(self, k: K) -> K::Output {
+        match self {
+            Self::Portable => Portable.enter(k),
+            #[cfg(target_arch = "x86_64")]
+            Self::Avx2(s) => s.enter(k),
+        }
+    }
+
+    /// Every build this CPU can run, the portable one first: tests check each
+    /// against the scalar code.
+    #[cfg(test)]
+    #[must_use]
+    pub(crate) fn all() -> Vec<Self> {
+        let mut all = vec![Self::Portable];
+        #[cfg(target_arch = "x86_64")]
+        all.extend(Avx2::detect().map(Self::Avx2));
+        all
+    }
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -81,4 +144,11 @@ pub(crate) trait Simd: Copy {
     fn le(a: Self::F, b: Self::F) -> Self::M;
     /// `if m { a } else { b }` per lane.
     fn select(m: Self::M, a: Self::F, b: Self::F) -> Self::F;
+    /// Eight RGBA pixels of the linear colours `r`, `g`, `b`: the bytes of
+    /// [`crate::color::rgba8_lanes`].
+    fn rgba8(self, r: &[f32; 8], g: &[f32; 8], b: &[f32; 8]) -> [u32; 8];
+    /// Runs `k` in this build: compiled for AVX2 in the AVX2 build (the one
+    /// entry from code built for any x86-64 into code built for AVX2), inlined
+    /// in the portable one.
+    fn enter<K: Kernel>(self, k: K) -> K::Output;
 }

@@ -4,10 +4,10 @@
 //! the query order, so ties resolve the same way too).
 
 use super::camera::CameraRays;
+use super::geometry::SURFACE_OFFSET;
 use super::geometry::{Aabb, hit_plane};
 use super::prepared::Prepared;
 use super::scene::Shape;
-use super::shade::SURFACE_OFFSET;
 use glam::Vec3;
 use std::sync::atomic::{AtomicU64, Ordering};
 

@@ -5,7 +5,7 @@
 //! every box is the scalar one: a scan in chunks takes the same boxes as the
 //! scan one box at a time.
 //!
-//! Used by the secondary-ray queries of [`Prepared`](super::prepared::Prepared)
+//! Used by the secondary-ray queries of `Prepared`
 //! (nearest hit, shadow rays) in place of walking the hierarchy, which for a few
 //! dozen objects costs more in its node tests than the boxes it skips.
 
@@ -15,12 +15,8 @@
 )]
 
 use super::geometry::{Aabb, Ray, T_MIN};
-use super::prepared::{Hit, Prepared};
-#[cfg(target_arch = "x86_64")]
-use super::simd::Avx2;
-use super::simd::{Portable, Simd};
+use super::simd::{Build, Kernel, Simd};
 use glam::Vec3;
-use std::cell::Cell;
 
 /// With the hierarchy on, scenes of at most this many bounded objects scan their
 /// boxes eight at a time instead of walking it.
@@ -120,11 +116,24 @@ fn slab<S: Simd>(s: S, c: &Chunk, a: usize, (o, inv): (f32, f32)) -> (S::F, S::F
     (S::min(t1, t2), S::max(t1, t2))
 }
 
-/// [`lanes`] compiled for AVX2.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-fn lanes_avx2(s: Avx2, c: &Chunk, o: Vec3, inv: Vec3, t_max: f32) -> u8 {
-    lanes(s, c, o, inv, t_max)
+/// [`lanes`] as a lane kernel.
+struct ChunkKernel<'k> {
+    c: &'k Chunk,
+    o: Vec3,
+    inv: Vec3,
+    t_max: f32,
+}
+
+#[expect(
+    clippy::inline_always,
+    reason = "a kernel inlines into its build's entry point, which compiles it for AVX2 in the AVX2 build"
+)]
+impl Kernel for ChunkKernel<'_> {
+    type Output = u8;
+    #[inline(always)]
+    fn run<S: Simd>(self, s: S) -> u8 {
+        lanes(s, self.c, self.o, self.inv, self.t_max)
+    }
 }
 
 impl WideBoxes {
@@ -203,19 +212,15 @@ impl<'a> WideList<'a> {
         limit: impl Fn() -> f32,
         mut visit: impl FnMut(usize, &Aabb, f32) -> bool,
     ) -> bool {
-        #[cfg(target_arch = "x86_64")]
-        let wide = Avx2::detect();
+        let build = Build::detect();
         for c in self.chunks {
             let t_max = limit();
-            #[cfg(target_arch = "x86_64")]
-            let mut bits = match wide {
-                // SAFETY: the token proves the CPU has AVX2.
-                #[expect(unsafe_code, reason = "the run-time dispatch to the AVX2 build")]
-                Some(s) => unsafe { lanes_avx2(s, c, ray.origin, inv, t_max) },
-                None => lanes(Portable, c, ray.origin, inv, t_max),
-            };
-            #[cfg(not(target_arch = "x86_64"))]
-            let mut bits = lanes(Portable, c, ray.origin, inv, t_max);
+            let mut bits = build.run(ChunkKernel {
+                c,
+                o: ray.origin,
+                inv,
+                t_max,
+            });
             while bits != 0 {
                 let j = bits.trailing_zeros() as usize;
                 bits &= bits - 1;
@@ -232,48 +237,11 @@ impl<'a> WideList<'a> {
     }
 }
 
-impl Prepared<'_> {
-    /// The linear scan of [`Prepared::closest`] (the planes, then the bounded
-    /// objects in query order, each tested through its box with the nearest hit
-    /// so far as the limit), eight boxes at a time: the same boxes pass, so it
-    /// finds the same hit. Object `skip` is not tested.
-    pub(crate) fn closest_wide(&self, ray: &Ray, t_max: f32, skip: usize) -> Option<Hit> {
-        let best: Cell<Option<(f32, usize, Vec3)>> = Cell::new(None);
-        let limit = || best.get().map_or(t_max, |b| b.0);
-        let consider = |i: usize| {
-            if i == skip {
-                return;
-            }
-            if let Some((t, n)) = self.hit_object(i, ray)
-                && t < limit()
-            {
-                best.set(Some((t, i, n)));
-            }
-        };
-        for &i in &self.planes {
-            consider(i);
-        }
-        let inv = ray.dir.recip();
-        if self.group.hit(ray, inv, t_max) {
-            self.wide.list().scan(ray, inv, limit, |i, b, chunk| {
-                // A nearer hit found within this chunk: the box again, with it.
-                let now = limit();
-                if now >= chunk || b.hit(ray, inv, now) {
-                    consider(i);
-                }
-                false
-            });
-        }
-        best.get()
-            .map(|(t, object, n)| Hit::facing(ray, t, object, n))
-    }
-}
-
 #[cfg(test)]
 mod tests {
-    use super::{W, WideBoxes, lanes};
+    use super::{ChunkKernel, W, WideBoxes};
     use crate::geometry::{Aabb, Ray};
-    use crate::simd::Portable;
+    use crate::simd::Build;
     use glam::Vec3;
 
     /// Both builds of the eight-box test against `Aabb::hit`, box by box.
@@ -289,12 +257,14 @@ mod tests {
             if !c.hull.hit(ray, inv, t_max) {
                 assert_eq!(want, 0, "hull of chunk {k} missed, {ray:?}");
             }
-            let got = lanes(Portable, c, ray.origin, inv, t_max);
-            assert_eq!(got, want, "portable, {ray:?}");
-            #[cfg(target_arch = "x86_64")]
-            if let Some(s) = crate::simd::Avx2::detect() {
-                let got = lanes(s, c, ray.origin, inv, t_max);
-                assert_eq!(got, want, "AVX2, {ray:?}");
+            for build in Build::all() {
+                let got = build.run(ChunkKernel {
+                    c,
+                    o: ray.origin,
+                    inv,
+                    t_max,
+                });
+                assert_eq!(got, want, "{build:?}, {ray:?}");
             }
         }
     }

@@ -2,8 +2,9 @@
 //! Whole frames of the cradle are in `frames.rs`.
 
 use cradle_trace::geometry::{Ray, hit_cylinder, hit_plane, hit_sphere};
+use cradle_trace::material::radiance_bound;
 use cradle_trace::motion::Motion;
-use cradle_trace::shade::{radiance_bound, trace};
+use cradle_trace::shade::trace;
 use cradle_trace::{self as trace, Camera, Light, Material, Object, Prepared, Scene, Shape};
 use glam::Vec3;
 
@@ -119,7 +120,14 @@ fn sphere(centre: Vec3, radius: f32, material: Material) -> Object {
 
 fn radiance(s: &Scene, r: &Ray) -> Vec3 {
     let p = Prepared::new(s);
-    trace(&p, r, 0, 1.0, radiance_bound(&p), &mut Motion::new(None))
+    trace(
+        &p,
+        r,
+        0,
+        1.0,
+        radiance_bound(p.scene),
+        &mut Motion::new(None),
+    )
 }
 
 #[test]
@@ -281,7 +289,7 @@ fn a_symmetric_scene_gives_a_mirror_symmetric_picture() {
 
 #[test]
 fn floor_i64_is_floor_as_i64_for_every_kind_of_value() {
-    use cradle_trace::shade::floor_i64;
+    use cradle_trace::geometry::floor_i64;
     let mut values = vec![
         0.0,
         -0.0,

@@ -1,4 +1,5 @@
-//! The motion filter's inner test, eight ray segments at a time: an incremental
+//! The moved shapes together ([`NearSet`]) and the motion filter's inner
+//! test, eight ray segments at a time: an incremental
 //! frame gathers the segments of a row's pixels whose cells meet the moved ones
 //! into a [`Batch`], and tests each full batch against each moved shape at once
 //! (the segments in lanes, the shape's numbers in every lane), by the boxes and
@@ -13,10 +14,10 @@
     reason = "the batch code is inlined into each entry point, so the AVX2 one compiles it for AVX2"
 )]
 
-use super::near::NearSet;
+use super::near::{Near, NearShape};
 use super::{Cells, Seg};
 use crate::bits::{BitRoom, RowBits};
-use crate::simd::Simd;
+use crate::simd::{Build, Kernel, Simd};
 use glam::Vec3;
 
 /// Segments per batch: the lanes.
@@ -142,7 +143,7 @@ impl Batch {
 /// The lanes whose segments (from `p` to `q`, `d = q - p`, `d2 = |d|^2`)
 /// pass through a moved ball where it was and one where it is
 /// (`NearSet::with_balls`): each time the nearest point of the segment to the
-/// centre within it and nearer than the radius less [`super::Near::PAD`] (with
+/// centre within it and nearer than the radius less [`Near::PAD`] (with
 /// the rounding's slack), both ends farther than the radius and the pad.
 #[inline(always)]
 fn left_out<S: Simd>(s: S, set: &NearSet, (p, q, d, d2): (&L3<S>, &L3<S>, &L3<S>, S::F)) -> u8 {
@@ -150,7 +151,7 @@ fn left_out<S: Simd>(s: S, set: &NearSet, (p, q, d, d2): (&L3<S>, &L3<S>, &L3<S>
     if before.is_empty() || after.is_empty() {
         return 0;
     }
-    let pad = super::Near::PAD;
+    let pad = Near::PAD;
     // (No closure: one left as a call is not compiled for AVX2.)
     let mut through = [0u8; 2];
     for (side, balls) in [before, after].into_iter().enumerate() {
@@ -198,14 +199,108 @@ pub(crate) struct Lanes {
     pub(crate) ball: bool,
 }
 
-/// Whether `near` says yes for a segment of a pixel with `cells`: the batch
-/// test of one segment.
-#[must_use]
-pub(crate) fn meets_one<S: Simd>(s: S, set: &NearSet, seg: &Seg, cells: Cells) -> bool {
-    let mut batch = Batch::default();
-    let mut room = BitRoom::new();
-    let mut hit = room.row(1);
-    batch.push(0, cells, seg);
-    batch.test(s, set, &mut hit);
-    hit.has(0)
+/// The moved shapes, each with its motion cells, for testing segments against
+/// them all ([`NearSet::meets`], and a row's segments eight at a time,
+/// [`Batch`]).
+#[derive(Debug, Clone, Default)]
+pub struct NearSet {
+    nears: Vec<(Cells, Near)>,
+    /// Each shape's numbers for the batch test.
+    lanes: Vec<Lanes>,
+    /// The moved balls where they were and where they are: centre and radius.
+    balls: [Vec<(Vec3, f32)>; 2],
+}
+
+impl NearSet {
+    /// The set of `nears`, each with its cells.
+    #[must_use]
+    pub fn new(nears: Vec<(Cells, Near)>) -> Self {
+        let lanes = nears
+            .iter()
+            .map(|(_, n)| {
+                let (a, e, r, ball) = match n.shape {
+                    NearShape::Sphere(c, r) => (c, Vec3::ZERO, r, true),
+                    NearShape::Capsule(a, b, r) => (a, b - a, r, false),
+                };
+                Lanes {
+                    lo: n.lo,
+                    hi: n.hi,
+                    a,
+                    e,
+                    r2: r * r,
+                    ball,
+                }
+            })
+            .collect();
+        Self {
+            nears,
+            lanes,
+            balls: Default::default(),
+        }
+    }
+
+    /// The set with the moved balls where they were (`before`) and where they
+    /// are (`after`): [`Self::meets`] then leaves out a segment that passes
+    /// through one of each, each time well inside it (deeper than
+    /// [`Near::PAD`]) with both its ends well outside. Were it a shadow ray's,
+    /// that ray was blocked and still is, so it gives what it gave; and it
+    /// cannot be the segment of a ray that ends at its nearest hit, which never
+    /// passes through a ball (where it was). So a pixel need not be traced
+    /// again for it.
+    #[must_use]
+    pub fn with_balls(mut self, before: Vec<(Vec3, f32)>, after: Vec<(Vec3, f32)>) -> Self {
+        self.balls = [before, after];
+        self
+    }
+
+    /// The moved balls where they were (side 0) and where they are (side 1),
+    /// for [`super::batch::Batch::test`]: a segment that passes well inside one
+    /// of each is not taken.
+    pub(crate) fn balls(&self) -> &[Vec<(Vec3, f32)>; 2] {
+        &self.balls
+    }
+
+    /// The shapes, each with its cells.
+    pub(crate) fn nears(&self) -> &[(Cells, Near)] {
+        &self.nears
+    }
+
+    /// Shape `j`'s numbers for the batch test.
+    pub(crate) fn lanes(&self, j: usize) -> &Lanes {
+        &self.lanes[j]
+    }
+
+    /// Whether segment `s` comes within one of the shapes whose cells meet
+    /// `cells` (and is not left out, [`Self::with_balls`]): what [`Near::meets`]
+    /// says of some such shape, by the batch test of this one segment
+    /// (`super::batch`), in the AVX2 build where the CPU has AVX2, else the
+    /// portable one.
+    #[must_use]
+    pub fn meets(&self, s: &Seg, cells: Cells) -> bool {
+        Build::detect().run(MeetsOne {
+            set: self,
+            seg: s,
+            cells,
+        })
+    }
+}
+
+/// [`NearSet::meets`] as a lane kernel: the batch test of one segment.
+struct MeetsOne<'k> {
+    set: &'k NearSet,
+    seg: &'k Seg,
+    cells: Cells,
+}
+
+impl Kernel for MeetsOne<'_> {
+    type Output = bool;
+    #[inline(always)]
+    fn run<S: Simd>(self, s: S) -> bool {
+        let mut batch = Batch::default();
+        let mut room = BitRoom::new();
+        let mut hit = room.row(1);
+        batch.push(0, self.cells, self.seg);
+        batch.test(s, self.set, &mut hit);
+        hit.has(0)
+    }
 }

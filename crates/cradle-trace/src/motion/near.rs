@@ -1,13 +1,8 @@
-//! The moved shapes an incremental frame re-traces around: each one grown a
-//! little ([`Near`]), and all of them together ([`NearSet`]), with each shape's
-//! numbers for testing eight ray segments at once (`super::batch`) before the
-//! exact distance is taken for the few pairs that test leaves.
+//! One moved shape an incremental frame re-traces around, grown a little
+//! ([`Near`]), and the exact distance of a ray segment from it: the test the
+//! eight-lane one (`super::batch`) leaves the few pairs it cannot settle to.
 
-use super::batch::{Lanes, meets_one};
-use super::{Cells, Seg};
-#[cfg(target_arch = "x86_64")]
-use crate::simd::Avx2;
-use crate::simd::Portable;
+use super::Seg;
 use glam::Vec3;
 
 /// A moved object where it was or where it is, grown by [`Near::PAD`], with its
@@ -15,14 +10,14 @@ use glam::Vec3;
 /// nor can it now.
 #[derive(Debug, Clone, Copy)]
 pub struct Near {
-    shape: NearShape,
-    lo: Vec3,
-    hi: Vec3,
+    pub(super) shape: NearShape,
+    pub(super) lo: Vec3,
+    pub(super) hi: Vec3,
 }
 
 /// The grown shape of a [`Near`].
 #[derive(Debug, Clone, Copy)]
-enum NearShape {
+pub(super) enum NearShape {
     /// A ball: centre and radius (grown).
     Sphere(Vec3, f32),
     /// A string or rod: its axis from one end to the other and its radius
@@ -136,99 +131,4 @@ fn segment_segment(p: Vec3, q: Vec3, a: Vec3, b: Vec3) -> f32 {
     } else {
         ends
     }
-}
-
-/// The moved shapes, each with its motion cells, for testing segments against
-/// them all ([`NearSet::meets`], and a row's segments eight at a time in
-/// `super::batch`).
-#[derive(Debug, Clone, Default)]
-pub struct NearSet {
-    nears: Vec<(Cells, Near)>,
-    /// Each shape's numbers for the batch test.
-    lanes: Vec<Lanes>,
-    /// The moved balls where they were and where they are: centre and radius.
-    balls: [Vec<(Vec3, f32)>; 2],
-}
-
-impl NearSet {
-    /// The set of `nears`, each with its cells.
-    #[must_use]
-    pub fn new(nears: Vec<(Cells, Near)>) -> Self {
-        let lanes = nears
-            .iter()
-            .map(|(_, n)| {
-                let (a, e, r, ball) = match n.shape {
-                    NearShape::Sphere(c, r) => (c, Vec3::ZERO, r, true),
-                    NearShape::Capsule(a, b, r) => (a, b - a, r, false),
-                };
-                Lanes {
-                    lo: n.lo,
-                    hi: n.hi,
-                    a,
-                    e,
-                    r2: r * r,
-                    ball,
-                }
-            })
-            .collect();
-        Self {
-            nears,
-            lanes,
-            balls: Default::default(),
-        }
-    }
-
-    /// The set with the moved balls where they were (`before`) and where they
-    /// are (`after`): [`Self::meets`] then leaves out a segment that passes
-    /// through one of each, each time well inside it (deeper than
-    /// [`Near::PAD`]) with both its ends well outside. Were it a shadow ray's,
-    /// that ray was blocked and still is, so it gives what it gave; and it
-    /// cannot be the segment of a ray that ends at its nearest hit, which never
-    /// passes through a ball (where it was). So a pixel need not be traced
-    /// again for it.
-    #[must_use]
-    pub fn with_balls(mut self, before: Vec<(Vec3, f32)>, after: Vec<(Vec3, f32)>) -> Self {
-        self.balls = [before, after];
-        self
-    }
-
-    /// The moved balls where they were (side 0) and where they are (side 1),
-    /// for [`super::batch::Batch::test`]: a segment that passes well inside one
-    /// of each is not taken.
-    pub(crate) fn balls(&self) -> &[Vec<(Vec3, f32)>; 2] {
-        &self.balls
-    }
-
-    /// The shapes, each with its cells.
-    pub(crate) fn nears(&self) -> &[(Cells, Near)] {
-        &self.nears
-    }
-
-    /// Shape `j`'s numbers for the batch test.
-    pub(crate) fn lanes(&self, j: usize) -> &Lanes {
-        &self.lanes[j]
-    }
-
-    /// Whether segment `s` comes within one of the shapes whose cells meet
-    /// `cells` (and is not left out, [`Self::with_balls`]): what [`Near::meets`]
-    /// says of some such shape, by the batch test of this one segment
-    /// (`super::batch`), in the AVX2 build where the CPU has AVX2, else the
-    /// portable one.
-    #[must_use]
-    pub fn meets(&self, s: &Seg, cells: Cells) -> bool {
-        #[cfg(target_arch = "x86_64")]
-        if let Some(t) = Avx2::detect() {
-            // SAFETY: the token proves the CPU has AVX2.
-            #[expect(unsafe_code, reason = "the run-time dispatch to the AVX2 build")]
-            return unsafe { meets_avx2(t, self, s, cells) };
-        }
-        meets_one(Portable, self, s, cells)
-    }
-}
-
-/// [`meets_one`] compiled for AVX2.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-fn meets_avx2(t: Avx2, set: &NearSet, s: &Seg, cells: Cells) -> bool {
-    meets_one(t, set, s, cells)
 }

@@ -21,17 +21,16 @@
 )]
 
 use super::hits::{hit_normal, normal_at};
-use super::lanes::Met;
 use super::nearest::Found;
+use super::rays::{Bounce, Bounce8, Met, leaving};
 use super::vec::select3;
 use super::{F8, L3, LANES, Packet, Surface, V8, load3, splat3, store3};
 use crate::geometry::Ray;
-use crate::prepared::Hit;
+use crate::geometry::{Hit, SURFACE_OFFSET};
+use crate::material::BAILOUT;
 use crate::scene::Shape;
-use crate::shade::{BAILOUT, SURFACE_OFFSET, shade};
-#[cfg(target_arch = "x86_64")]
-use crate::simd::Avx2;
-use crate::simd::{Portable, Simd};
+use crate::shade::shade;
+use crate::simd::{Kernel, Simd};
 use glam::Vec3;
 
 /// Fewer lanes than this on one object are traced one by one, by the scalar
@@ -42,94 +41,50 @@ const SHARED: u32 = 2;
 /// `max_depth` allows).
 const LEVELS: usize = 17;
 
-/// The lanes' rays: from `origin` along `d`, bounce `depth`, path weight
-/// `weight` per lane (the eye's rays: 0 and 1).
-#[derive(Clone, Copy)]
-pub(super) struct Bounce<F> {
-    pub(super) origin: L3<F>,
-    pub(super) d: L3<F>,
-    pub(super) depth: u32,
-    pub(super) weight: F,
-    /// The lanes whose rays are free (`Motion::free`): mirror rays of camera
-    /// rays that met a plane (camera rays, at depth 0, are free in every lane).
-    pub(super) free: u8,
-    /// Per lane, the plane the ray leaves (its index as `f32`), which it does
-    /// not test (`Prepared::closest_from`), or -1.
-    pub(super) from: F,
-}
-
 /// One level's result per lane: the local colour, the reflectivity of what
 /// was met, and the lanes that reflect (bits).
 type Level<F> = (L3<F>, F, u8);
 
-/// [`Bounce`] as arrays, to pass to a function of its own.
-pub(super) struct Bounce8 {
-    pub(super) origin: V8,
-    pub(super) d: V8,
-    pub(super) depth: u32,
-    pub(super) weight: F8,
-    pub(super) free: u8,
-    pub(super) from: F8,
-}
-
-/// A lane build with its own compiled copy of [`Packet::bounce_lanes`]: one
-/// function per build, called from the floor's kernel and its mirrors, not
-/// inlined into each (which made the crate slow to compile). The AVX2 copy is
-/// compiled for AVX2. Lane values cross the call as arrays.
-pub(super) trait Bounces: Simd {
-    /// [`Packet::bounce_lanes`] of the rays `first`.
-    fn bounce(self, pk: &Packet<'_, '_>, first: &Bounce8, live: u8, found: Option<Found<F8>>)
-    -> V8;
-}
-
-impl Bounces for Portable {
-    #[inline(never)]
-    fn bounce(
-        self,
-        pk: &Packet<'_, '_>,
-        first: &Bounce8,
-        live: u8,
-        found: Option<Found<F8>>,
-    ) -> V8 {
-        pk.bounce_arrays(self, first, live, found)
-    }
-}
-
-#[cfg(target_arch = "x86_64")]
-impl Bounces for Avx2 {
-    #[inline(never)]
-    fn bounce(
-        self,
-        pk: &Packet<'_, '_>,
-        first: &Bounce8,
-        live: u8,
-        found: Option<Found<F8>>,
-    ) -> V8 {
-        // SAFETY: the token proves the CPU has AVX2.
-        #[expect(unsafe_code, reason = "the call into the AVX2 build")]
-        unsafe {
-            bounce_avx2(self, pk, first, live, found)
-        }
-    }
-}
-
-/// [`Packet::bounce_lanes`] compiled for AVX2.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-fn bounce_avx2(
-    s: Avx2,
+/// [`Packet::bounce_lanes`] of the rays `first` in lane build `s`, through
+/// the build's one compiled copy: not inlined into each caller (the floor's
+/// kernel and its mirrors), which made the crate slow to compile; the AVX2
+/// copy is compiled for AVX2. Lane values cross the call as arrays.
+#[inline(never)]
+pub(super) fn bounce_copy<S: Simd>(
+    s: S,
     pk: &Packet<'_, '_>,
     first: &Bounce8,
     live: u8,
     found: Option<Found<F8>>,
 ) -> V8 {
-    pk.bounce_arrays(s, first, live, found)
+    s.enter(BounceKernel {
+        pk,
+        first,
+        live,
+        found,
+    })
+}
+
+/// [`Packet::bounce_lanes`] as a lane kernel.
+struct BounceKernel<'k, 'p, 'a> {
+    pk: &'k Packet<'p, 'a>,
+    first: &'k Bounce8,
+    live: u8,
+    found: Option<Found<F8>>,
+}
+
+impl Kernel for BounceKernel<'_, '_, '_> {
+    type Output = V8;
+    #[inline(always)]
+    fn run<S: Simd>(self, s: S) -> V8 {
+        self.pk.bounce_arrays(s, self.first, self.live, self.found)
+    }
 }
 
 impl Packet<'_, '_> {
     /// [`Self::bounce_lanes`] through build `S`'s own copy.
     #[inline(always)]
-    pub(super) fn bounce<S: Bounces>(
+    pub(super) fn bounce<S: Simd>(
         &self,
         s: S,
         first: &Bounce<S::F>,
@@ -149,7 +104,7 @@ impl Packet<'_, '_> {
         if let Some(f) = found {
             known = Some(f.store::<S>());
         }
-        load3(s, &s.bounce(self, &arrays, live, known))
+        load3(s, &bounce_copy(s, self, &arrays, live, known))
     }
 
     /// [`Self::bounce_lanes`] from and to arrays.
@@ -386,12 +341,4 @@ impl Packet<'_, '_> {
             shade(p, r, hit, depth, weight, b, motion, None)
         })
     }
-}
-
-/// The plane lane `i`'s ray leaves (`Bounce::from`), as
-/// `Prepared::closest_from` takes it: a plane's own rays do not test it.
-#[inline(always)]
-pub(super) fn leaving<S: Simd>(from: S::F, i: usize) -> Option<(usize, bool)> {
-    let f = S::store(from)[i];
-    (f >= 0.0).then_some((f as usize, false))
 }

@@ -13,8 +13,8 @@
 
 use super::vec::select3;
 use super::{L3, splat3};
+use crate::geometry::Geom;
 use crate::geometry::{Aabb, Cylinder, T_MIN};
-use crate::prepared::Geom;
 use crate::simd::Simd;
 use glam::Vec3;
 

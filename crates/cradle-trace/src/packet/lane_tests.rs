@@ -6,8 +6,8 @@
 use super::hits::{blocks8, box8};
 use super::lookup::lookup;
 use super::{F8, LANES, V8, load3};
+use crate::geometry::Geom;
 use crate::geometry::{Aabb, Cylinder, Ray, hit_sphere};
-use crate::prepared::Geom;
 use crate::simd::{Portable, Simd};
 use glam::Vec3;
 
@@ -213,8 +213,8 @@ fn checker_lanes<S: Simd>(s: S, floor: &super::Floor<'_>, x: &F8, z: &F8) -> V8 
 
 #[test]
 fn checker_lanes_pick_the_scalar_colours() {
+    use crate::material::base_color;
     use crate::scene::Material;
-    use crate::shade::base_color;
     let material = Material {
         color: Vec3::new(0.32, 0.22, 0.14),
         specular: None,

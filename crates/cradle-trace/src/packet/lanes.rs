@@ -9,12 +9,12 @@
     reason = "the lane code is inlined into each entry point, so the AVX2 one compiles it for AVX2"
 )]
 
-use super::bounce::{Bounce, Bounces};
 use super::hits::{box8, plane8, recip};
 use super::nearest::Nearest;
+use super::rays::{Bounce, Met};
 use super::{Floor, L3, LANES, Packet, Surface, f8, lanes, splat3};
+use crate::material::{BAILOUT, base_color, highlight, powi};
 use crate::scene::{Light, Material, Shape};
-use crate::shade::{BAILOUT, base_color, highlight, powi};
 use crate::simd::Simd;
 use glam::Vec3;
 
@@ -22,44 +22,11 @@ use glam::Vec3;
 /// its parity are exact in `f32`.
 const SMALL: f32 = 4_194_304.0; // 2^22
 
-/// What the lanes to shade met: the packet's floor seen from the eye (depth
-/// 0, with its tile's shadow bits), or object `object` at any depth (a
-/// plane or not), met from outside in the lanes of `outside`.
-#[derive(Clone, Copy)]
-pub(super) enum Met<'m> {
-    Floor(&'m Floor<'m>),
-    Object {
-        object: usize,
-        material: &'m Material,
-        outside: u8,
-        plane: bool,
-    },
-}
-
-impl Met<'_> {
-    /// The object met.
-    #[inline(always)]
-    fn object(&self) -> usize {
-        match *self {
-            Met::Floor(f) => f.object,
-            Met::Object { object, .. } => object,
-        }
-    }
-
-    #[inline(always)]
-    fn material(&self) -> &Material {
-        match *self {
-            Met::Floor(f) => f.material,
-            Met::Object { material, .. } => material,
-        }
-    }
-}
-
 impl Packet<'_, '_> {
     /// `shade` at depth 0 of the floor lanes `on` (a bit each) at `hit`: what
     /// [`Self::local_lanes`] gives, blended with what the mirror rays bring.
     #[inline(always)]
-    pub(super) fn shade_lanes<S: Bounces>(
+    pub(super) fn shade_lanes<S: Simd>(
         &self,
         s: S,
         floor: &Floor<'_>,
@@ -274,7 +241,7 @@ impl Packet<'_, '_> {
     /// ([`Self::bounce`]). A packet whose lanes all meet nothing takes the
     /// background at once.
     #[inline(always)]
-    fn mirrors<S: Bounces>(
+    fn mirrors<S: Simd>(
         &self,
         s: S,
         floor: &Floor<'_>,

@@ -8,11 +8,11 @@
     reason = "the lane code is inlined into each entry point, so the AVX2 one compiles it for AVX2"
 )]
 
-use super::bounce::{Bounce, leaving};
 use super::hits::{box8, hit_part, recip};
+use super::rays::{Bounce, leaving};
 use super::{F8, L3, LANES, Packet, store3};
+use crate::geometry::Geom;
 use crate::geometry::Ray;
-use crate::prepared::Geom;
 use crate::simd::Simd;
 
 /// The nearest hits of a level's lanes: the lanes that meet nothing (bits),

@@ -11,7 +11,7 @@ use super::hits::recip;
 use super::occlusion::Rays;
 use super::{L3, LANES, Packet, lanes_with, splat3};
 use crate::casters::MARGIN;
-use crate::prepared::Geom;
+use crate::geometry::Geom;
 use crate::simd::Simd;
 use glam::Vec3;
 
@@ -130,8 +130,8 @@ fn clear_lanes<S: Simd>(s: S, g: &Geom, p: &L3<S::F>) -> S::M {
 mod tests {
     use super::{clear_lanes, piece_lanes};
     use crate::casters::{Casters, clear_of};
+    use crate::geometry::Geom;
     use crate::packet::vec::L3;
-    use crate::prepared::Geom;
     use crate::scene::{Light, Shape};
     use crate::simd::{Portable, Simd};
     use glam::Vec3;

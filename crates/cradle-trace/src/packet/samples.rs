@@ -3,11 +3,10 @@
 //! time), each traced by the bounces from the eye as the scalar
 //! `trace_primary` traces it (the tile's lists only skip what cannot be met).
 
-use super::bounce::{Bounce8, Bounces};
+use super::bounce::bounce_copy;
+use super::rays::Bounce8;
 use super::{LANES, Packet, V8};
-#[cfg(target_arch = "x86_64")]
-use crate::simd::Avx2;
-use crate::simd::Portable;
+use crate::simd::{Build, Portable};
 use glam::Vec3;
 
 impl Packet<'_, '_> {
@@ -39,10 +38,10 @@ impl Packet<'_, '_> {
 
     /// The bounces of `first` in the lanes of `live`, in the best lane build.
     fn trace_eye(&self, first: &Bounce8, live: u8) -> V8 {
-        #[cfg(target_arch = "x86_64")]
-        if let Some(s) = Avx2::detect() {
-            return s.bounce(self, first, live, None);
+        match Build::detect() {
+            Build::Portable => bounce_copy(Portable, self, first, live, None),
+            #[cfg(target_arch = "x86_64")]
+            Build::Avx2(s) => bounce_copy(s, self, first, live, None),
         }
-        Portable.bounce(self, first, live, None)
     }
 }

@@ -3,12 +3,11 @@
 //! runs first, `screen`, then the segments of the pixels they leave, eight at a
 //! time, against the moved shapes).
 
-use super::{BLOCK, RowMotion, SUPER, Spans};
+use super::Spans;
 use crate::bits::BitRoom;
+use crate::motion::{BLOCK, RowMotion, SUPER};
 use crate::motion::{Batch, Cells, NearSet};
-#[cfg(target_arch = "x86_64")]
-use crate::simd::Avx2;
-use crate::simd::{Portable, Simd};
+use crate::simd::{Build, Kernel, Simd};
 use glam::Vec3;
 
 /// What moved since the last frame: the cells of the moved objects, where they
@@ -57,20 +56,11 @@ impl Moved {
         if !self.reaches(y, rm) {
             return false;
         }
-        #[cfg(target_arch = "x86_64")]
-        if let Some(s) = Avx2::detect() {
-            // SAFETY: the token proves the CPU has AVX2.
-            #[expect(unsafe_code, reason = "the run-time dispatch to the AVX2 build")]
-            return unsafe { self.dirty_avx2(s, (y, rm, sure), out) };
-        }
-        self.dirty_with(Portable, (y, rm, sure), out)
-    }
-
-    /// [`Self::dirty`] compiled for AVX2.
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
-    fn dirty_avx2(&self, s: Avx2, at: (usize, &RowMotion, bool), out: &mut Vec<u32>) -> bool {
-        self.dirty_with(s, at, out)
+        Build::detect().run(Dirty {
+            moved: self,
+            at: (y, rm, sure),
+            out,
+        })
     }
 
     /// [`Self::dirty`] after its row test, in lane build `s`.
@@ -192,4 +182,23 @@ fn may_hold(runs: &[(u32, u32)], r: &mut usize, met: Cells, (x0, x1): (usize, us
         *r += 1;
     }
     met != 0 || runs.get(*r).is_some_and(|run| (run.0 as usize) < x1)
+}
+
+/// [`Moved::dirty`] after its row test, as a lane kernel.
+struct Dirty<'k> {
+    moved: &'k Moved,
+    at: (usize, &'k RowMotion, bool),
+    out: &'k mut Vec<u32>,
+}
+
+#[expect(
+    clippy::inline_always,
+    reason = "a kernel inlines into its build's entry point, which compiles it for AVX2 in the AVX2 build"
+)]
+impl Kernel for Dirty<'_> {
+    type Output = bool;
+    #[inline(always)]
+    fn run<S: Simd>(self, s: S) -> bool {
+        self.moved.dirty_with(s, self.at, self.out)
+    }
 }

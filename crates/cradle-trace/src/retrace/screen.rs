@@ -340,5 +340,4 @@ fn screen_box(cam: &CameraRays, b: &Aabb, m: &Map) -> Option<[[f32; 2]; 2]> {
 }
 
 #[cfg(test)]
-#[path = "screen_tests.rs"]
 mod tests;

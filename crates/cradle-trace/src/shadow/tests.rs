@@ -2,8 +2,8 @@
 
 use super::Footprints;
 use crate::casters::piece_boxes;
+use crate::geometry::bounds;
 use crate::geometry::{Aabb, Ray, hit_cylinder};
-use crate::prepared::bounds;
 use crate::scene::{Light, Shape};
 use glam::Vec3;
 

@@ -14,14 +14,17 @@
     reason = "AVX intrinsics, run only where an `Avx2` token proves the CPU has AVX2"
 )]
 
-use super::Simd;
+use super::{Kernel, Simd};
+use crate::color::{BUCKET_SHIFT, FIRST_BUCKET, IN_BUCKET, srgb_entries};
 use std::arch::x86_64::{
-    __m256, _CMP_LE_OQ, _CMP_LT_OQ, _mm256_add_ps, _mm256_and_ps, _mm256_and_si256,
-    _mm256_andnot_ps, _mm256_blendv_ps, _mm256_castsi256_ps, _mm256_cmp_ps, _mm256_cmpeq_epi32,
-    _mm256_cvttps_epi32, _mm256_div_ps, _mm256_floor_ps, _mm256_loadu_ps, _mm256_max_ps,
-    _mm256_min_ps, _mm256_movemask_ps, _mm256_mul_ps, _mm256_or_ps, _mm256_set1_epi32,
-    _mm256_set1_ps, _mm256_setr_epi32, _mm256_sqrt_ps, _mm256_storeu_ps, _mm256_storeu_si256,
-    _mm256_sub_ps, _mm256_xor_ps,
+    __m256, __m256i, _CMP_LE_OQ, _CMP_LT_OQ, _mm256_add_epi32, _mm256_add_ps, _mm256_and_ps,
+    _mm256_and_si256, _mm256_andnot_ps, _mm256_blendv_ps, _mm256_castps_si256, _mm256_castsi256_ps,
+    _mm256_cmp_ps, _mm256_cmpeq_epi32, _mm256_cmpgt_epi32, _mm256_cvttps_epi32, _mm256_div_ps,
+    _mm256_floor_ps, _mm256_i32gather_epi32, _mm256_loadu_ps, _mm256_max_epi32, _mm256_max_ps,
+    _mm256_min_ps, _mm256_movemask_ps, _mm256_mul_ps, _mm256_or_ps, _mm256_or_si256,
+    _mm256_set1_epi32, _mm256_set1_ps, _mm256_setr_epi32, _mm256_setzero_ps, _mm256_setzero_si256,
+    _mm256_slli_epi32, _mm256_sqrt_ps, _mm256_srli_epi32, _mm256_storeu_ps, _mm256_storeu_si256,
+    _mm256_sub_epi32, _mm256_sub_ps, _mm256_xor_ps,
 };
 use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
 
@@ -35,6 +38,13 @@ impl Avx2 {
     pub(crate) fn detect() -> Option<Self> {
         super::avx2().then_some(Self(()))
     }
+}
+
+/// `k` in the AVX2 build, compiled for AVX2 (no FMA, which AVX2 does not
+/// imply): the kernel inlines here, and the lane operations into it.
+#[target_feature(enable = "avx2")]
+fn run_avx2<K: Kernel>(s: Avx2, k: K) -> K::Output {
+    k.run(s)
 }
 
 /// Eight floats in an AVX register.
@@ -163,5 +173,67 @@ impl Simd for Avx2 {
     fn select(m: AM, a: A8, b: A8) -> A8 {
         // SAFETY: the values prove AVX2.
         A8(unsafe { _mm256_blendv_ps(b.0, a.0, m.0) })
+    }
+    #[inline]
+    fn enter<K: Kernel>(self, k: K) -> K::Output {
+        // SAFETY: the token proves the CPU has AVX2, the one feature `run_avx2`
+        // is compiled for.
+        unsafe { run_avx2(self, k) }
+    }
+    /// Per channel the scalar steps of `srgb8`: the same clamp (`max` with 0
+    /// takes 0 for NaN and -0), the bucket's entry by one gather, one
+    /// comparison of bits; the channels are packed in the registers.
+    #[inline(always)]
+    fn rgba8(self, r: &[f32; 8], g: &[f32; 8], b: &[f32; 8]) -> [u32; 8] {
+        let entries = srgb_entries();
+        let (r, g, b) = (
+            srgb_count(self, entries, r),
+            srgb_count(self, entries, g),
+            srgb_count(self, entries, b),
+        );
+        let mut out = [0u32; 8];
+        // SAFETY: the token proves AVX2; the store writes the eight u32 of `out`.
+        unsafe {
+            let px = _mm256_or_si256(
+                _mm256_or_si256(r, _mm256_slli_epi32::<8>(g)),
+                _mm256_or_si256(_mm256_slli_epi32::<16>(b), _mm256_set1_epi32(-16_777_216)),
+            );
+            _mm256_storeu_si256(out.as_mut_ptr().cast(), px);
+        }
+        out
+    }
+}
+
+/// One channel of [`Simd::rgba8`] in AVX2: each lane's sRGB byte (as `srgb8`),
+/// by the bucket's entry. (A function, not a closure: a closure left as a call
+/// is not compiled for AVX2.)
+#[inline(always)]
+fn srgb_count(_: Avx2, entries: &[u32], linear: &[f32; 8]) -> __m256i {
+    // SAFETY: the token (the first argument) proves AVX2; the load reads
+    // the eight floats of `linear`; the bucket index lies in 0..entries.len() (the value
+    // is clamped to [0, 1], the index to >= 0), so the gather reads in
+    // bounds.
+    unsafe {
+        let v = _mm256_loadu_ps(linear.as_ptr());
+        let c = _mm256_castps_si256(_mm256_min_ps(
+            _mm256_max_ps(v, _mm256_setzero_ps()),
+            _mm256_set1_ps(1.0),
+        ));
+        let bucket = _mm256_max_epi32(
+            _mm256_sub_epi32(
+                _mm256_srli_epi32::<{ BUCKET_SHIFT as i32 }>(c),
+                _mm256_set1_epi32(FIRST_BUCKET as i32),
+            ),
+            _mm256_setzero_si256(),
+        );
+        let entry = _mm256_i32gather_epi32::<4>(entries.as_ptr().cast(), bucket);
+        let at = _mm256_and_si256(entry, _mm256_set1_epi32(0xFFFF));
+        let here = _mm256_and_si256(c, _mm256_set1_epi32(IN_BUCKET as i32));
+        // low + 1 + (-1 where at > here): both below 2^16, so signed
+        // comparison is exact.
+        _mm256_add_epi32(
+            _mm256_add_epi32(_mm256_srli_epi32::<16>(entry), _mm256_set1_epi32(1)),
+            _mm256_cmpgt_epi32(at, here),
+        )
     }
 }

@@ -7,8 +7,9 @@
     reason = "each operation is a loop that must inline into its kernel"
 )]
 
-use super::Simd;
-use crate::shade::floor_i64;
+use super::{Kernel, Simd};
+use crate::color::rgba8_lanes;
+use crate::geometry::floor_i64;
 use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
 
 /// The portable token.
@@ -159,6 +160,14 @@ impl Simd for Portable {
     #[inline(always)]
     fn le(a: P8, b: P8) -> Bits {
         test(a, b, |a, b| a <= b)
+    }
+    #[inline(always)]
+    fn rgba8(self, r: &[f32; 8], g: &[f32; 8], b: &[f32; 8]) -> [u32; 8] {
+        rgba8_lanes(*r, *g, *b)
+    }
+    #[inline(always)]
+    fn enter<K: Kernel>(self, k: K) -> K::Output {
+        k.run(self)
     }
     #[inline(always)]
     fn select(m: Bits, a: P8, b: P8) -> P8 {

@@ -6,12 +6,12 @@ use super::Lcg;
 use crate::simd::{Portable, Simd};
 /// `x^n` by `powi` over lanes of build `s`.
 fn powi_lanes<S: Simd>(s: S, x: &F8, n: u32) -> F8 {
-    S::store(crate::shade::powi(s.load(x), n))
+    S::store(crate::material::powi(s.load(x), n))
 }
 
 #[test]
 fn whole_exponents_are_powers_by_squaring_in_every_build() {
-    use crate::shade::{Phong, highlight, powi, whole};
+    use crate::material::{Phong, highlight, powi, whole};
     assert_eq!(
         [0.0, 0.5, 1.0, 120.0, 120.5, 10_000.0, 10_001.0, f32::NAN].map(whole),
         [
@@ -56,7 +56,7 @@ fn whole_exponents_are_powers_by_squaring_in_every_build() {
 /// subnormal one (each is at least the result, `facing` being at most 1).
 #[test]
 fn highlights_below_2_to_the_minus_100_are_cut() {
-    use crate::shade::{Phong, highlight, powi};
+    use crate::material::{Phong, highlight, powi};
     for e in [
         1.0, 2.0, 2.5, 7.0, 20.0, 40.0, 120.0, 1000.0, 4097.0, 10_000.0,
     ] {

@@ -8,7 +8,7 @@ use super::super::hits::{blocks8, hit_part};
 use super::super::{LANES, load3};
 use super::{Lcg, lanes_of, rays};
 use crate::geometry::Cylinder;
-use crate::prepared::Geom;
+use crate::geometry::Geom;
 use crate::simd::{Portable, Simd};
 use glam::Vec3;
 

@@ -3,17 +3,17 @@
 //! is checkered, where a plane's own rays would meet it again, and past the
 //! scan limit of the bounces' nearest hits.
 
-use super::{Frame, RenderOptions};
+use super::{Frame, RenderOptions, image};
+use crate::motion::RowMotion;
 use crate::motion::Seg;
-use crate::retrace::RowMotion;
 use crate::scene::{Camera, Light, Material, Object, Scene, Shape};
 use glam::Vec3;
 
 /// The packets and culling (`RenderOptions::FAST`) render the reference's
 /// bytes (`RenderOptions::FULL`) of `scene`.
 fn assert_fast_is_full(scene: &Scene, what: &str) {
-    let fast = Frame::new(scene, RenderOptions::FAST, false).image(false).0;
-    let full = Frame::new(scene, RenderOptions::FULL, false).image(false).0;
+    let fast = image(&Frame::new(scene, RenderOptions::FAST, false), false).0;
+    let full = image(&Frame::new(scene, RenderOptions::FULL, false), false).0;
     assert!(fast == full, "{what}");
 }
 
@@ -80,8 +80,8 @@ fn packets_note_the_same_motion_cells_as_the_scalar_path() {
         adaptive: None,
         motion_bounds: Some((Vec3::new(-0.3, 0.0, -0.1), Vec3::new(0.3, 0.3, 0.1))),
     };
-    let (fast_img, fast_rows) = Frame::new(&scene, RenderOptions::FAST, true).image(false);
-    let (full_img, full_rows) = Frame::new(&scene, RenderOptions::FULL, true).image(false);
+    let (fast_img, fast_rows) = image(&Frame::new(&scene, RenderOptions::FAST, true), false);
+    let (full_img, full_rows) = image(&Frame::new(&scene, RenderOptions::FULL, true), false);
     assert!(fast_img == full_img, "the same picture");
     let cells = |rows: &[RowMotion]| {
         rows.iter()
@@ -245,7 +245,7 @@ fn no_renderer_tests_a_planes_own_rays() {
         let Some(hit) = p.closest(&ray, f32::INFINITY).filter(|h| h.object == 0) else {
             continue;
         };
-        let start = ray.at(hit.t) + hit.normal * crate::shade::SURFACE_OFFSET;
+        let start = ray.at(hit.t) + hit.normal * crate::geometry::SURFACE_OFFSET;
         let dir = ray.dir - 2.0 * ray.dir.dot(hit.normal) * hit.normal;
         let mirror = crate::geometry::Ray { origin: start, dir };
         again += usize::from(

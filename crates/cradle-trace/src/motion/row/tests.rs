@@ -1,6 +1,7 @@
 //! Tests of a row's motion record: its segment buffer's room and compaction.
 
-use super::{RowMotion, Seg};
+use super::RowMotion;
+use crate::motion::Seg;
 use glam::Vec3;
 
 #[test]
