@@ -9,9 +9,10 @@ use super::camera::CameraRays;
 use super::color::{Image, srgb8};
 use super::geometry::Aabb;
 use super::material::radiance_bound;
-use super::motion::{Cells, Motion, MotionGrid, RowMotion, Seg};
+use super::motion::{Cells, Motion, MotionGrid, NoRecord, Record, RowMotion, Seg};
 use super::packet::{LANES, Packet};
 use super::prepared::Prepared;
+use super::reference::{self, Plain};
 use super::sampling::sample_offsets;
 use super::scene::Scene;
 use super::shade::{trace, trace_primary};
@@ -101,24 +102,44 @@ impl<'a> Frame<'a> {
         offsets: &[(f32, f32)],
         segs: &mut Vec<Seg>,
     ) -> (Vec3, Cells) {
+        if self.motion.is_none() {
+            return (self.samples((x, y), first, offsets, &mut NoRecord), 0);
+        }
         let mut motion = Motion::with(self.motion, std::mem::take(segs));
+        let c = self.samples((x, y), first, offsets, &mut motion);
+        *segs = motion.segs;
+        (c, motion.mask)
+    }
+
+    /// [`Self::pixel`]'s colour, its rays' segments noted in `record`: by the
+    /// tiles' fast path, or without tiles by the scalar path (recording) or the
+    /// reference (not).
+    fn samples(
+        &self,
+        (x, y): (u32, u32),
+        first: Option<Vec3>,
+        offsets: &[(f32, f32)],
+        record: &mut impl Record,
+    ) -> Vec3 {
         let n = offsets.len() + usize::from(first.is_some());
         // `Sum` for Vec3 is this fold from zero.
         let start = Vec3::ZERO + first.unwrap_or(Vec3::ZERO);
+        let p = &self.prepared;
         let sum = offsets
             .iter()
             .map(|&(dx, dy)| {
                 let ray = self.camera.ray(x as f32 + dx, y as f32 + dy);
-                match &self.tiles {
-                    Some(t) => {
-                        trace_primary(&self.prepared, &ray, (t, x, y), self.bound, &mut motion)
+                match (&self.tiles, self.motion) {
+                    (Some(t), _) => trace_primary(p, &ray, (t, x, y), self.bound, record),
+                    (None, Some(_)) => trace(p, &ray, self.bound, record),
+                    (None, None) => {
+                        let hit = p.closest(&ray, f32::INFINITY);
+                        reference::shade(p, &ray, hit, (0, 1.0), self.bound, &mut Plain)
                     }
-                    None => trace(&self.prepared, &ray, 0, 1.0, self.bound, &mut motion),
                 }
             })
             .fold(start, |a, b| a + b);
-        *segs = motion.segs;
-        (sum / n as f32, motion.mask)
+        sum / n as f32
     }
 
     /// Traces pixel `at` into `px` at `offsets` after sample `first` (see

@@ -7,7 +7,8 @@
 //! - [`prepared`], [`bvh`], [`tiles`], [`shadow`]: bounds and culling structures
 //!   built once per frame ([`Prepared`]); `wide` tests eight boxes at once, in
 //!   the AVX2 or the portable build (`simd`);
-//! - [`camera`], [`geometry`], [`shade`]: rays, hit tests and Whitted shading;
+//! - [`camera`], [`geometry`], [`reference`], `shade`: rays, hit tests,
+//!   Whitted shading (the reference) and its fast scalar path;
 //! - [`sampling`], [`render`]: sample offsets and the serial and parallel render
 //!   twins ([`render`], [`render_serial`]);
 //! - [`motion`], `retrace`, [`incremental`], `adaptive`: motion cells and ray
@@ -27,11 +28,12 @@ pub mod material;
 pub mod motion;
 pub mod packet;
 pub mod prepared;
+pub mod reference;
 pub mod render;
 mod retrace;
 pub mod sampling;
 pub mod scene;
-pub mod shade;
+mod shade;
 pub mod shadow;
 mod simd;
 mod supersample;

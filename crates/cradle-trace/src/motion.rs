@@ -1,7 +1,7 @@
 //! Motion tracking for incremental frames: the box every moving object stays in,
 //! cut into 32 x 4 x 1 cells, and per pixel the set of cells its rays passed
 //! through (one bit each in a `u128`) and the segments of its rays inside the
-//! box. `shade` notes both as it traces (free segments, [`Motion::free`], leave
+//! box. The scalar path notes both as it traces ([`Record`]; free segments leave
 //! no cells: the filter finds those pixels on the screen); `incremental`
 //! re-traces the pixels whose cells meet those of moved objects, or that lie
 //! where a moved object shows, and one of whose segments comes near a moved
@@ -148,10 +148,30 @@ pub struct Seg {
     pub b: Vec3,
 }
 
+/// Where the scalar path notes each ray's segment for incremental frames: it
+/// is generic over this, so an untracked frame notes nothing at no cost
+/// ([`NoRecord`]).
+pub(crate) trait Record {
+    /// Notes the segment of `ray` from its start to `t_max`; a free one (a
+    /// camera ray, or a ray from where a camera ray met a plane) without its
+    /// cells: whether it comes near a moved shape shows on the screen
+    /// (`screen::Spans`).
+    fn segment(&mut self, ray: &Ray, t_max: f32, free: bool);
+}
+
+/// Notes nothing: the recorder of frames that track no motion.
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct NoRecord;
+
+impl Record for NoRecord {
+    #[inline]
+    fn segment(&mut self, _: &Ray, _: f32, _: bool) {}
+}
+
 /// Which cells of the motion grid the rays of one pixel passed through, and their
 /// segments inside its box: a pixel none of whose segments comes near an object
 /// that moved keeps its colour. The cells leave out the pixel's free segments
-/// (see [`Motion::free`]), which the incremental filter finds on the screen
+/// ([`Record::segment`]), which the incremental filter finds on the screen
 /// instead (`screen`).
 #[derive(Debug, Clone)]
 pub struct Motion {
@@ -161,11 +181,6 @@ pub struct Motion {
     pub mask: Cells,
     /// Segments inside the box so far, appended (a row's buffer, lent).
     pub segs: Vec<Seg>,
-    /// Whether the next segment noted is free: a camera ray, or a ray from where
-    /// a camera ray met a plane (its mirror ray, its shadow rays). Its segment is
-    /// kept but its cells are not: whether it comes near a moved shape shows on
-    /// the screen (`screen::Spans`). [`Motion::segment`] clears it.
-    pub free: bool,
 }
 
 impl Motion {
@@ -182,18 +197,16 @@ impl Motion {
             grid,
             mask: 0,
             segs,
-            free: false,
         }
     }
+}
 
-    /// Notes the segment of `ray` from its start to `t_max`, with its cells
-    /// unless it is free ([`Self::free`], which it clears).
+impl Record for Motion {
     #[inline]
-    pub(crate) fn segment(&mut self, ray: &Ray, t_max: f32) {
+    fn segment(&mut self, ray: &Ray, t_max: f32, free: bool) {
         let Some(g) = &self.grid else {
             return;
         };
-        let free = std::mem::take(&mut self.free);
         if let Some(s) = g.clip(ray, t_max) {
             if !free {
                 self.mask |= g.cells(s.a.min(s.b), s.a.max(s.b));

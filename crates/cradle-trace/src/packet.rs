@@ -201,17 +201,11 @@ impl Packet<'_, '_> {
     }
 
     /// What `f` returns, given a `Motion` for lane `i` (lent the lane's
-    /// segments, to append to; its first segment `free` or not,
-    /// `Motion::free`) whose cells then go to the lane's in a tracked frame:
-    /// the scalar path's tracing of one lane.
-    pub(crate) fn in_lane(
-        &self,
-        (i, free): (usize, bool),
-        f: impl FnOnce(&mut Motion) -> Vec3,
-    ) -> Vec3 {
+    /// segments, to append to) whose cells then go to the lane's in a tracked
+    /// frame: the scalar path's tracing of one lane.
+    pub(crate) fn in_lane(&self, i: usize, f: impl FnOnce(&mut Motion) -> Vec3) -> Vec3 {
         let lent = std::mem::take(&mut self.segs.borrow_mut()[i]);
         let mut motion = Motion::with(self.motion, lent);
-        motion.free = free;
         let c = f(&mut motion);
         if self.motion.is_some() {
             let m = &self.marks.as_array_of_cells()[i];

@@ -1,173 +1,127 @@
-//! Whitted shading: ambient + Lambert diffuse + Phong specular per light, one
-//! shadow ray per light (any hit ends it), mirror reflections to `max_depth`
-//! blended by the material's `reflective` weight.
-//! The shading model's pieces are in `material`.
+//! The scalar fast path: the reference's shading (`reference::shade`) with
+//! its rays answered from the tiles' lists where a primary pixel has them (a
+//! tile no caster can shadow tests only the planes; a plane's mirror ray only
+//! its tile's mirror candidates), and each ray's segment noted for incremental
+//! frames through a [`Record`] (nothing at all for [`NoRecord`]). It gives the
+//! reference's hits, so the reference's bytes (tested).
 
-use super::geometry::{Hit, Ray, SURFACE_OFFSET};
-use super::material::{BAILOUT, base_color, highlight};
-use super::motion::Motion;
+use super::geometry::{Hit, Ray};
+use super::motion::Record;
 use super::prepared::Prepared;
-use super::scene::{Light, Shape};
+use super::reference::{Paths, shade};
+use super::scene::Shape;
 use super::tiles::Tiles;
 use glam::Vec3;
 
-/// Radiance (linear RGB) along `ray`; `depth` bounces so far, `weight` the product
-/// of reflective factors so far, `bound` from [`radiance_bound`]; `motion` notes
-/// whether the rays entered the moving objects' box.
-#[must_use]
-pub fn trace(
-    p: &Prepared<'_>,
-    ray: &Ray,
-    depth: u32,
-    weight: f32,
-    bound: f32,
-    motion: &mut Motion,
-) -> Vec3 {
-    let hit = p.closest(ray, f32::INFINITY);
-    shade(p, ray, hit, depth, weight, bound, motion, None)
+/// The fast path's [`Paths`]: the primary pixel's tile, if any (its lists
+/// serve the rays from the primary hit), and the recorder of segments.
+struct Tiled<'t, R> {
+    tile: Option<(&'t Tiles, u32, u32)>,
+    record: &'t mut R,
+    /// Whether the next ray traced is free: a mirror ray from where a camera
+    /// ray met a plane (camera rays are free by their depth).
+    next_free: bool,
 }
 
-/// [`trace`] for the primary ray of pixel `(x, y)`: it tests only its tile's
-/// candidates, and a plane's mirror ray only the tile's mirror candidates.
+impl<R: Record> Tiled<'_, R> {
+    /// Whether the rays from the point of `hit`, met at `depth`, are free: it
+    /// is where a camera ray met a plane.
+    #[inline]
+    fn from_eye_on_plane(p: &Prepared<'_>, hit: Hit, depth: u32) -> bool {
+        depth == 0 && matches!(p.scene.objects[hit.object].shape, Shape::Plane { .. })
+    }
+
+    /// The tile, for the rays from a primary hit (`depth` 0).
+    #[inline]
+    fn tile(&self, depth: u32) -> Option<(&Tiles, u32, u32)> {
+        self.tile.filter(|_| depth == 0)
+    }
+}
+
+impl<R: Record> Paths for Tiled<'_, R> {
+    #[inline]
+    fn traced(&mut self, _: &Prepared<'_>, ray: &Ray, t_max: f32, depth: u32) {
+        let free = std::mem::take(&mut self.next_free) || depth == 0;
+        self.record.segment(ray, t_max, free);
+    }
+
+    #[inline]
+    fn blocked(
+        &mut self,
+        p: &Prepared<'_>,
+        shadow: &Ray,
+        dist: f32,
+        (hit, light, depth): (Hit, usize, u32),
+    ) -> bool {
+        let free = Self::from_eye_on_plane(p, hit, depth);
+        self.record.segment(shadow, dist, free);
+        if self
+            .tile(depth)
+            .is_some_and(|(t, x, y)| t.shadow_clear(p, (hit.object, light), x, y))
+        {
+            p.occluded_by_planes(hit.object, shadow, dist)
+        } else {
+            p.occluded_towards((hit.object, hit.outside), light, shadow, dist)
+        }
+    }
+
+    #[inline]
+    fn mirror(&mut self, p: &Prepared<'_>, mirror: &Ray, hit: Hit, depth: u32) -> Option<Hit> {
+        self.next_free = Self::from_eye_on_plane(p, hit, depth);
+        match self
+            .tile(depth)
+            .and_then(|(t, x, y)| t.mirror_at(hit.object, x, y))
+        {
+            Some(c) => p.closest_among(mirror, f32::INFINITY, (c, hit.object)),
+            None => p.closest_from(Some((hit.object, hit.outside)), mirror, f32::INFINITY),
+        }
+    }
+}
+
+/// The radiance of a camera ray (`depth` 0), by the fast path without tiles:
+/// noting its segments in `record`.
 #[must_use]
-pub fn trace_primary(
+pub(crate) fn trace(p: &Prepared<'_>, ray: &Ray, bound: f32, record: &mut impl Record) -> Vec3 {
+    let hit = p.closest(ray, f32::INFINITY);
+    shade_from(p, ray, hit, (0, 1.0), bound, (record, false))
+}
+
+/// The radiance of the primary ray of pixel `(x, y)`: it tests only its
+/// tile's candidates, and a plane's mirror ray only the tile's mirror
+/// candidates; its segments noted in `record`.
+#[must_use]
+pub(crate) fn trace_primary(
     p: &Prepared<'_>,
     ray: &Ray,
     (tiles, x, y): (&Tiles, u32, u32),
     bound: f32,
-    motion: &mut Motion,
+    record: &mut impl Record,
 ) -> Vec3 {
     let hit = p.closest_among(ray, f32::INFINITY, (tiles.at(x, y), usize::MAX));
-    shade(p, ray, hit, 0, 1.0, bound, motion, Some((tiles, x, y)))
+    let mut paths = Tiled {
+        tile: Some((tiles, x, y)),
+        record,
+        next_free: false,
+    };
+    shade(p, ray, hit, (0, 1.0), bound, &mut paths)
 }
 
-/// The radiance of `hit` (or the background for none) seen along `ray`; `tile`
-/// is the primary ray's pixel, whose tile lists the candidates of mirror rays.
-#[expect(
-    clippy::too_many_arguments,
-    reason = "the recursion's state, passed down"
-)]
-pub(crate) fn shade(
+/// The radiance of `hit` (or the background) seen along `ray`, a bounce at
+/// `depth` with path weight `weight`, without tiles; its segments noted in
+/// `record`, the first one free where `free` says so (a packet's lane
+/// handing a ray on).
+pub(crate) fn shade_from<R: Record>(
     p: &Prepared<'_>,
     ray: &Ray,
     hit: Option<Hit>,
-    depth: u32,
-    weight: f32,
+    (depth, weight): (u32, f32),
     bound: f32,
-    motion: &mut Motion,
-    tile: Option<(&Tiles, u32, u32)>,
+    (record, free): (&mut R, bool),
 ) -> Vec3 {
-    // A camera ray's segment is free (`Motion::free`), and so are the shadow
-    // and mirror rays from where it met a plane.
-    motion.free |= depth == 0;
-    motion.segment(ray, hit.map_or(f32::INFINITY, |h| h.t));
-    let Some(hit) = hit else {
-        return p.scene.background;
+    let mut paths = Tiled {
+        tile: None,
+        record,
+        next_free: free,
     };
-    let from_eye_on_plane =
-        depth == 0 && matches!(p.scene.objects[hit.object].shape, Shape::Plane { .. });
-    let m = &p.scene.objects[hit.object].material;
-    let point = ray.at(hit.t);
-    let n = hit.normal;
-    let start = point + n * SURFACE_OFFSET;
-    let base = base_color(m, point);
-    let mut color = Vec3::ZERO;
-    for (li, light) in p.scene.lights.iter().enumerate() {
-        let (to_light, dist, light_color) = match *light {
-            Light::Ambient { color: c } => {
-                color += base * c;
-                continue;
-            }
-            Light::Point { position, color: c } => {
-                let d = position - point;
-                let len = d.length();
-                (d / len, len, c)
-            }
-            Light::Directional {
-                direction,
-                color: c,
-            } => (-direction, f32::INFINITY, c),
-        };
-        let lambert = n.dot(to_light);
-        if lambert <= 0.0 {
-            continue;
-        }
-        let shadow = Ray {
-            origin: start,
-            dir: to_light,
-        };
-        motion.free = from_eye_on_plane;
-        if blocked(p, &shadow, dist, (hit, li), tile, motion) {
-            continue;
-        }
-        color += base * light_color * lambert;
-        if let Some(phong) = p.phong(hit.object) {
-            let mirrored = 2.0 * lambert * n - to_light;
-            let facing = mirrored.dot(-ray.dir);
-            if facing > 0.0 {
-                color += light_color * highlight(facing, phong);
-            }
-        }
-    }
-    let r = m.reflective;
-    if r > 0.0 && depth < p.scene.max_depth && weight * r * bound >= BAILOUT {
-        let dir = ray.dir - 2.0 * ray.dir.dot(n) * n;
-        let mirror = Ray { origin: start, dir };
-        motion.free = from_eye_on_plane;
-        let reflected = reflect(
-            p,
-            &mirror,
-            (hit.object, hit.outside),
-            depth + 1,
-            weight * r,
-            bound,
-            motion,
-            tile,
-        );
-        color = color * (1.0 - r) + reflected * r;
-    }
-    color
-}
-
-/// Whether the shadow ray from a point of `hit` towards light `li` is blocked
-/// before `dist`: a tile no caster can shadow (`tile`) tests only the planes.
-pub(crate) fn blocked(
-    p: &Prepared<'_>,
-    shadow: &Ray,
-    dist: f32,
-    (hit, li): (Hit, usize),
-    tile: Option<(&Tiles, u32, u32)>,
-    motion: &mut Motion,
-) -> bool {
-    motion.segment(shadow, dist);
-    if tile.is_some_and(|(t, x, y)| t.shadow_clear(p, (hit.object, li), x, y)) {
-        p.occluded_by_planes(hit.object, shadow, dist)
-    } else {
-        p.occluded_towards((hit.object, hit.outside), li, shadow, dist)
-    }
-}
-
-/// The radiance the mirror ray `mirror` from `object` (met from outside or
-/// not) brings back, traced as a bounce at `depth` with path weight `weight`: a
-/// plane's mirror ray from a primary pixel (`tile`) tests only its tile's
-/// mirror candidates.
-#[expect(
-    clippy::too_many_arguments,
-    reason = "the recursion's state, passed down"
-)]
-pub(crate) fn reflect(
-    p: &Prepared<'_>,
-    mirror: &Ray,
-    (object, outside): (usize, bool),
-    depth: u32,
-    weight: f32,
-    bound: f32,
-    motion: &mut Motion,
-    tile: Option<(&Tiles, u32, u32)>,
-) -> Vec3 {
-    let h = match tile.and_then(|(t, x, y)| t.mirror_at(object, x, y)) {
-        Some(c) => p.closest_among(mirror, f32::INFINITY, (c, object)),
-        None => p.closest_from(Some((object, outside)), mirror, f32::INFINITY),
-    };
-    shade(p, mirror, h, depth, weight, bound, motion, None)
+    shade(p, ray, hit, (depth, weight), bound, &mut paths)
 }

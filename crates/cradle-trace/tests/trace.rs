@@ -2,9 +2,7 @@
 //! Whole frames of the cradle are in `frames.rs`.
 
 use cradle_trace::geometry::{Ray, hit_cylinder, hit_plane, hit_sphere};
-use cradle_trace::material::radiance_bound;
-use cradle_trace::motion::Motion;
-use cradle_trace::shade::trace;
+use cradle_trace::reference::trace;
 use cradle_trace::{self as trace, Camera, Light, Material, Object, Prepared, Scene, Shape};
 use glam::Vec3;
 
@@ -120,14 +118,7 @@ fn sphere(centre: Vec3, radius: f32, material: Material) -> Object {
 
 fn radiance(s: &Scene, r: &Ray) -> Vec3 {
     let p = Prepared::new(s);
-    trace(
-        &p,
-        r,
-        0,
-        1.0,
-        radiance_bound(p.scene),
-        &mut Motion::new(None),
-    )
+    trace(&p, r)
 }
 
 #[test]

@@ -29,7 +29,7 @@ use crate::geometry::Ray;
 use crate::geometry::{Hit, SURFACE_OFFSET};
 use crate::material::BAILOUT;
 use crate::scene::Shape;
-use crate::shade::shade;
+use crate::shade::shade_from;
 use crate::simd::{Kernel, Simd};
 use glam::Vec3;
 
@@ -336,9 +336,9 @@ impl Packet<'_, '_> {
         (depth, weight): (u32, f32),
     ) -> Vec3 {
         let (p, b) = (self.p, self.bound);
-        self.in_lane((i, free >> i & 1 != 0), |motion| {
+        self.in_lane(i, |motion| {
             let hit = hit.or_else(|| p.closest_from(from, r, f32::INFINITY));
-            shade(p, r, hit, depth, weight, b, motion, None)
+            shade_from(p, r, hit, (depth, weight), b, (motion, free >> i & 1 != 0))
         })
     }
 }
