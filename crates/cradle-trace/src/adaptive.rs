@@ -16,13 +16,13 @@
 
 use super::bits::{BitRoom, ascending};
 use super::color::Image;
-
 use super::frame::{Frame, for_rows};
 use super::motion::RowMotion;
 use super::retrace::{Moved, Notes, retrace_row};
 use super::supersample::{Supersamples, supersampled};
 use glam::Vec3;
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicU32, Ordering};
 
 /// The centre sample of the base layer.
 const CENTRE: [(f32, f32); 1] = [(0.5, 0.5)];
@@ -69,58 +69,71 @@ struct Scratch {
     samples: Supersamples,
 }
 
-/// Whether each pixel of `base` is an edge at `threshold`, row-major.
-fn edges(frame: &Frame<'_>, base: &[u8], threshold: f32) -> Vec<bool> {
-    let w = frame.width();
-    (0..frame.height())
-        .into_par_iter()
-        .flat_map_iter(|y| (0..w).map(move |x| frame.is_edge(base, x, y, threshold)))
-        .collect()
-}
-
-/// A full adaptive frame at `threshold`, and its layers.
-pub(crate) fn adaptive_full(frame: &Frame<'_>, threshold: f32) -> (Image, Layers) {
+/// The full adaptive frame at `threshold`, and its layers: the one-sample
+/// base, then every sample at its edges. Rows in parallel or one after
+/// another (the same bytes), adding 1 to `rows_done` as each row of each
+/// pass is done (`2 * height` in all). Every adaptive picture is made here:
+/// the full renders' and the first of a run of incremental frames.
+pub(crate) fn adaptive_full(
+    frame: &Frame<'_>,
+    threshold: f32,
+    (parallel, rows_done): (bool, Option<&AtomicU32>),
+) -> (Image, Layers) {
+    let count = || {
+        if let Some(c) = rows_done {
+            c.fetch_add(1, Ordering::Relaxed);
+        }
+    };
     let (w, h) = (frame.width(), frame.height());
+    let track = frame.motion.is_some();
     let mut base = Image {
         width: w,
         height: h,
         rgba: vec![0; w as usize * h as usize * 4],
     };
     let n = w as usize;
-    let mut lin = vec![Vec3::ZERO; n * h as usize];
-    let base_rows = base
-        .rgba
-        .par_chunks_exact_mut(n * 4)
-        .zip(lin.par_chunks_exact_mut(n))
-        .enumerate()
-        .map(|(y, (row, lin))| frame.row_with(y as u32, row, &CENTRE, Some(lin)))
-        .collect();
-    let edge = edges(frame, &base.rgba, threshold);
+    let (base_rows, lin): (Vec<RowMotion>, Vec<Vec<Vec3>>) =
+        for_rows(&mut base, parallel, |y, row| {
+            let mut lin = vec![Vec3::ZERO; n];
+            let rm = frame.row_with(y, row, &CENTRE, Some(&mut lin));
+            count();
+            (rm, lin)
+        })
+        .into_iter()
+        .unzip();
+    let lin = lin.concat();
     let mut img = base.clone();
-    let edge_rows = for_rows(&mut img, true, |y, row| {
-        let span = y as usize * n..(y as usize + 1) * n;
-        let (flags, lin) = (&edge[span.clone()], &lin[span]);
-        let mut rm = RowMotion::new(n, true);
-        let xs: Vec<usize> = (0..n).filter(|&x| flags[x]).collect();
-        let mut samples = Supersamples::default();
-        supersampled(frame, y, &xs, |x| lin[x], &mut samples);
-        let Supersamples { done, segs } = samples;
-        let mut done = done.into_iter();
-        for (x, px) in row.chunks_exact_mut(4).enumerate() {
-            rm.begin(true);
-            if flags[x]
-                && let Some(((bytes, cells), span)) = done.next()
-            {
-                px.copy_from_slice(&bytes);
-                rm.cells[x] = cells;
-                rm.segs.extend_from_slice(&segs[span]);
+    let (edge_rows, edge): (Vec<RowMotion>, Vec<Vec<bool>>) =
+        for_rows(&mut img, parallel, |y, row| {
+            let flags = frame.edge_row(&base.rgba, y, threshold);
+            let lin = &lin[y as usize * n..(y as usize + 1) * n];
+            let mut rm = RowMotion::new(n, track);
+            let xs: Vec<usize> = (0..n).filter(|&x| flags[x]).collect();
+            let mut samples = Supersamples::default();
+            supersampled(frame, y, &xs, |x| lin[x], &mut samples);
+            let Supersamples { done, segs } = samples;
+            let mut done = done.into_iter();
+            for (x, px) in row.chunks_exact_mut(4).enumerate() {
+                rm.begin(track);
+                if flags[x]
+                    && let Some(((bytes, cells), span)) = done.next()
+                {
+                    px.copy_from_slice(&bytes);
+                    if track {
+                        rm.cells[x] = cells;
+                        rm.segs.extend_from_slice(&segs[span]);
+                    }
+                }
             }
-        }
-        rm.begin(true);
-        rm.seal();
-        rm.room();
-        rm
-    });
+            rm.begin(track);
+            rm.seal();
+            rm.room();
+            count();
+            (rm, flags)
+        })
+        .into_iter()
+        .unzip();
+    let edge = edge.concat();
     let layers = Layers {
         base,
         base_rows,
@@ -132,6 +145,20 @@ pub(crate) fn adaptive_full(frame: &Frame<'_>, threshold: f32) -> (Image, Layers
         flips: vec![Vec::new(); h as usize],
     };
     (img, layers)
+}
+
+impl Layers {
+    /// Each row's motion cells, the base's and the edge samples' together,
+    /// without segments: the record of a frame that is not reused.
+    pub(crate) fn into_rows(self) -> Vec<RowMotion> {
+        let mut rows = self.base_rows;
+        for (m, e) in rows.iter_mut().zip(self.edge_rows) {
+            m.cells.iter_mut().zip(e.cells).for_each(|(a, b)| *a |= b);
+            m.untrack();
+            m.seal();
+        }
+        rows
+    }
 }
 
 /// The next adaptive frame into `img`, from `layers` after `moved`, noting

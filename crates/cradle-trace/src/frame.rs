@@ -279,6 +279,39 @@ impl<'a> Frame<'a> {
             || (y > 0 && differs(x, y - 1))
             || (y + 1 < self.height && differs(x, y + 1))
     }
+
+    /// [`Self::is_edge`] of every pixel of row `y`: each pair of neighbours
+    /// compared once, by a table of the byte differences above `edge`.
+    pub(crate) fn edge_row(&self, base: &[u8], y: u32, edge: f32) -> Vec<bool> {
+        let w = self.width as usize;
+        let above: [bool; 256] = std::array::from_fn(|d| f32::from(d as u8) > edge);
+        let differs = |a: &[u8], b: &[u8]| {
+            above[usize::from(a[0].abs_diff(b[0]))]
+                | above[usize::from(a[1].abs_diff(b[1]))]
+                | above[usize::from(a[2].abs_diff(b[2]))]
+        };
+        let row = |y: u32| &base[y as usize * w * 4..(y as usize + 1) * w * 4];
+        let here = row(y);
+        let mut out = vec![false; w];
+        for x in 1..w {
+            if differs(&here[(x - 1) * 4..x * 4], &here[x * 4..x * 4 + 4]) {
+                out[x - 1] = true;
+                out[x] = true;
+            }
+        }
+        let up = y.checked_sub(1);
+        let down = (y + 1 < self.height).then_some(y + 1);
+        for there in [up, down].into_iter().flatten().map(row) {
+            for ((o, a), b) in out
+                .iter_mut()
+                .zip(here.chunks_exact(4))
+                .zip(there.chunks_exact(4))
+            {
+                *o |= differs(a, b);
+            }
+        }
+        out
+    }
 }
 
 /// Runs `f(y, row)` over the rows of `img`, in parallel on the current rayon pool
@@ -301,5 +334,46 @@ pub(crate) fn for_rows<R: Send>(
             .enumerate()
             .map(|(y, row)| f(y as u32, row))
             .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{Frame, RenderOptions};
+    use crate::scene::Scene;
+
+    /// A row's edge flags are each pixel's own edge test, on pictures of
+    /// noise and of flat runs, at thresholds at, between and past the byte
+    /// steps, and on pictures one pixel wide or high.
+    #[test]
+    fn a_rows_edges_are_each_pixels_edge_test() {
+        let mut seed = 7u32;
+        let mut next = || {
+            seed = seed.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+            (seed >> 24) as u8
+        };
+        for (w, h) in [(23, 17), (1, 9), (9, 1), (1, 1)] {
+            let scene = Scene {
+                size: (w, h),
+                samples: 4,
+                adaptive: Some(0.1),
+                ..Scene::default()
+            };
+            let frame = Frame::new(&scene, RenderOptions::FULL, false);
+            for flat in [false, true] {
+                // Flat: runs of one colour, with steps of 0 to 3 between them.
+                let base: Vec<u8> = (0..w * h * 4)
+                    .map(|i| if flat { (i / 4 / 5 % 4) as u8 } else { next() })
+                    .collect();
+                for edge in [-1.0, 0.0, 0.5, 1.0, 2.0, 25.5, 254.9, 255.0] {
+                    for y in 0..h {
+                        let row = frame.edge_row(&base, y, edge);
+                        let want: Vec<bool> =
+                            (0..w).map(|x| frame.is_edge(&base, x, y, edge)).collect();
+                        assert_eq!(row, want, "{w}x{h} flat {flat} edge {edge} row {y}");
+                    }
+                }
+            }
+        }
     }
 }

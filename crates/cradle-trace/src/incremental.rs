@@ -216,7 +216,7 @@ impl Incremental {
             self.since = Some(self.id);
         } else {
             let (img, rows, layers) = if let Some(threshold) = adaptive {
-                let (img, layers) = adaptive_full(&frame, threshold);
+                let (img, layers) = adaptive_full(&frame, threshold, (true, None));
                 (img, Vec::new(), Some(layers))
             } else {
                 let (img, rows) = image(&frame, true);

@@ -4,12 +4,11 @@
 //! ([`render_serial`], with [`RenderOptions::FULL`] the reference). Both run
 //! the same per-pixel code (`frame`), so their bytes are equal.
 
+use super::adaptive::adaptive_full;
 use super::color::Image;
 use super::frame::{Frame, for_rows};
-use super::motion::{Cells, RowMotion};
+use super::motion::RowMotion;
 use super::scene::Scene;
-use super::supersample::{Supersamples, supersampled};
-use glam::Vec3;
 use std::sync::atomic::{AtomicU32, Ordering};
 
 pub use super::frame::RenderOptions;
@@ -23,61 +22,30 @@ pub(crate) fn image(frame: &Frame<'_>, parallel: bool) -> (Image, Vec<RowMotion>
     image_counting(frame, parallel, None)
 }
 
-/// [`Self::image`], adding 1 to `rows_done` as each row of each pass is
-/// done (with adaptive anti-aliasing, two passes: `2 * height` in all).
+/// [`image`], adding 1 to `rows_done` as each row of each pass is done
+/// (with adaptive anti-aliasing, two passes: `2 * height` in all; that frame
+/// is `adaptive`'s).
 fn image_counting(
     frame: &Frame<'_>,
     parallel: bool,
     rows_done: Option<&AtomicU32>,
 ) -> (Image, Vec<RowMotion>) {
-    let count = || {
-        if let Some(c) = rows_done {
-            c.fetch_add(1, Ordering::Relaxed);
-        }
-    };
+    if let Some(edge) = frame.edge() {
+        let (img, layers) = adaptive_full(frame, edge, (parallel, rows_done));
+        return (img, layers.into_rows());
+    }
     let mut img = Image {
         width: frame.width(),
         height: frame.height(),
         rgba: vec![0; frame.width() as usize * frame.height() as usize * 4],
     };
-    let Some(edge) = frame.edge() else {
-        let rows = for_rows(&mut img, parallel, |y, row| {
-            let motion = frame.row_with(y, row, frame.offsets(), None);
-            count();
-            motion
-        });
-        return (img, rows);
-    };
-    let (mut rows, lin): (Vec<RowMotion>, Vec<Vec<Vec3>>) =
-        for_rows(&mut img, parallel, |y, row| {
-            let mut lin = vec![Vec3::ZERO; frame.width() as usize];
-            let motion = frame.row_with(y, row, &[(0.5, 0.5)], Some(&mut lin));
-            count();
-            (motion, lin)
-        })
-        .into_iter()
-        .unzip();
-    let base = img.rgba.clone();
-    let edges = for_rows(&mut img, parallel, |y, row| {
-        let xs: Vec<usize> = (0..frame.width())
-            .filter(|&x| frame.is_edge(&base, x, y, edge))
-            .map(|x| x as usize)
-            .collect();
-        let mut cells: Vec<Cells> = vec![0; frame.width() as usize];
-        let mut done = Supersamples::default();
-        supersampled(frame, y, &xs, |x| lin[y as usize][x], &mut done);
-        for (&x, ((bytes, c), _)) in xs.iter().zip(done.done) {
-            row[x * 4..x * 4 + 4].copy_from_slice(&bytes);
-            cells[x] = c;
+    let rows = for_rows(&mut img, parallel, |y, row| {
+        let motion = frame.row_with(y, row, frame.offsets(), None);
+        if let Some(c) = rows_done {
+            c.fetch_add(1, Ordering::Relaxed);
         }
-        count();
-        cells
+        motion
     });
-    for (m, e) in rows.iter_mut().zip(edges) {
-        m.cells.iter_mut().zip(e).for_each(|(a, b)| *a |= b);
-        m.untrack();
-        m.seal();
-    }
     (img, rows)
 }
 
