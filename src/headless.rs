@@ -109,8 +109,9 @@ pub fn render(
         if let Some(track) = track {
             track.hear(world.impacts(), world.scene());
         }
+        let change = world.take_change();
         match &mut inc {
-            Some(inc) => pool.install(|| inc.render(world.scene()).clone()),
+            Some(inc) => pool.install(|| inc.render_changed(world.scene(), &change).clone()),
             None => pool.install(|| trace::render(world.scene())),
         }
     };

@@ -236,3 +236,68 @@ fn far_strings_are_drawn_a_pixel_wide_inside_the_widened_swing_box() {
         "{near:?}"
     );
 }
+
+/// The ECS tells the tracer what changed: exactly the moving objects whose
+/// shapes changed since it last took the change (what comparing the two
+/// flat scenes finds), nothing while paused, and anything after a respawn or
+/// an edit of the view or the quality.
+#[test]
+fn the_change_the_ecs_hands_the_tracer_is_what_moved() {
+    use trace::Change;
+    let mut config = Config::default();
+    config.start.running = true;
+    let mut w = CradleWorld::new(&config);
+    w.frame(0.0);
+    assert_eq!(w.take_change(), Change::Any, "the first frame is new");
+    let mut last = w.scene().clone();
+    let mut moved_some = 0;
+    for n in 0..240 {
+        // Frames taken one at a time, and now and then two before a take:
+        // the change covers every frame since the last take.
+        w.frame(1.0 / 60.0);
+        if n % 7 == 3 {
+            w.frame(1.0 / 60.0);
+        }
+        let change = w.take_change();
+        assert_eq!(change, Change::between(&last, w.scene()), "frame {n}");
+        if let Change::Moved(list) = &change {
+            // A swing of one lifted ball: the balls at rest keep their shapes.
+            assert!(
+                list.len() < w.scene().objects.len() / 2,
+                "frame {n}: {list:?}"
+            );
+            moved_some += usize::from(!list.is_empty());
+        }
+        last = w.scene().clone();
+    }
+    assert!(moved_some > 200, "the swing moved things: {moved_some}");
+
+    w.set_running(false);
+    w.frame(1.0 / 60.0);
+    let _ = w.take_change();
+    for _ in 0..10 {
+        w.frame(1.0 / 60.0);
+        assert_eq!(w.take_change(), Change::none(), "paused: nothing moves");
+    }
+    let camera = w.scene().camera;
+    w.set_camera(camera);
+    w.frame(0.0);
+    assert_eq!(
+        w.take_change(),
+        Change::none(),
+        "the same view is no change"
+    );
+    let mut turned = camera;
+    turned.position.x += 0.01;
+    w.set_camera(turned);
+    w.frame(0.0);
+    assert_eq!(w.take_change(), Change::Any, "a new view");
+    assert_eq!(w.scene().camera, turned);
+    w.set_quality(1, None);
+    w.frame(0.0);
+    assert_eq!(w.take_change(), Change::Any, "a new quality");
+    assert_eq!((w.scene().samples, w.scene().adaptive), (1, None));
+    w.respawn(&config);
+    w.frame(0.0);
+    assert_eq!(w.take_change(), Change::Any, "a respawned world");
+}

@@ -117,9 +117,11 @@ fn incremental_swing_equals_full(config: &Config, what: &str) -> (f64, f64) {
     let mut named = 0.0;
     for n in 0..300 {
         world.show_at(f64::from(n) / 60.0);
+        // What moved, as the ECS says (the window's and sequences' way).
+        let change = world.take_change();
         let scene = world.scene();
         let full = render_serial_with(scene, RenderOptions::FULL);
-        let frame = inc.render(scene).clone();
+        let frame = inc.render_changed(scene, &change).clone();
         assert!(frame == full, "{what}: frame {n} differs");
         assert_eq!(
             inc.last_was_full(),

@@ -543,7 +543,10 @@ impl Session {
             let want = if running { dt * self.rate } else { 0.0 };
             self.world.frame_by(want, Some(now + PHYSICS_BUDGET));
             self.behind = want > 0.0 && self.time() - before < 0.999 * want;
-            let now_traced = self.tracer.frame(&self.pool, self.world.scene(), running);
+            let change = self.world.take_change();
+            let now_traced = self
+                .tracer
+                .frame(&self.pool, (self.world.scene(), change), running);
             self.stepped(now_traced.is_none());
             traced = now_traced.or(traced);
             if running && dt > 0.0 {

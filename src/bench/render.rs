@@ -56,11 +56,14 @@ pub fn bench_render(
             // Two warm-up frames (the first incremental one is traced in full).
             for f in 0..frames + 2 {
                 world.show_at(0.5 + f64::from(f) / 60.0);
+                let change = world.take_change();
                 let start = Instant::now();
                 if mode == "full" {
                     std::hint::black_box(pool.install(|| trace::render(world.scene())));
                 } else {
-                    std::hint::black_box(pool.install(|| inc.render(world.scene()).rgba.len()));
+                    std::hint::black_box(
+                        pool.install(|| inc.render_changed(world.scene(), &change).rgba.len()),
+                    );
                 }
                 let ms = start.elapsed().as_secs_f64() * 1e3;
                 if f >= 2 {

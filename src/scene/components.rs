@@ -154,10 +154,32 @@ impl FrameImpacts {
     }
 }
 
-/// The flat scene for the tracer: its camera, lights and settings are set at
-/// spawn, its objects by the extract stage each frame.
+/// The flat scene for the tracer: its background and size are set at spawn,
+/// its camera and quality by `apply_view`, its objects and lights by the
+/// extract stage each frame; with what changed since the tracer last took
+/// it (`CradleWorld::take_change`), from the components' change ticks.
 #[derive(Resource, Debug, Clone, Default)]
-pub struct FlatScene(pub trace::Scene);
+pub struct FlatScene {
+    /// The scene.
+    pub scene: trace::Scene,
+    /// What changed since the tracer last took it.
+    pub change: trace::Change,
+}
+
+/// The camera the user looks through: the asset's fitted one at spawn, then
+/// orbit, pan, zoom and camera reset.
+#[derive(Resource, Debug, Clone, Copy, PartialEq)]
+pub struct View(pub trace::Camera);
+
+/// How the tracer samples a pixel: samples per pixel, and the adaptive
+/// threshold (`None`: every pixel at every sample).
+#[derive(Resource, Debug, Clone, Copy, PartialEq)]
+pub struct Quality {
+    /// Samples per pixel.
+    pub samples: u32,
+    /// Adaptive anti-aliasing's threshold.
+    pub adaptive: Option<f32>,
+}
 
 /// The box the balls and strings stay in at every time, at their true
 /// thickness (min, max corners): extract widens it by what it adds to far

@@ -45,7 +45,11 @@ pub fn frame_schedule() -> Schedule {
             .chain()
             .in_set(FrameSet::Physics),
     );
-    schedule.add_systems(systems::extract.in_set(FrameSet::Extract));
+    schedule.add_systems(
+        (systems::apply_view, systems::extract)
+            .chain()
+            .in_set(FrameSet::Extract),
+    );
     schedule
 }
 
@@ -148,21 +152,34 @@ impl CradleWorld {
     /// Traces with `samples` per pixel (adaptive at `adaptive`) from the next frame
     /// on: a change the running swing absorbs.
     pub fn set_quality(&mut self, samples: u32, adaptive: Option<f32>) {
-        let mut flat = self.world.resource_mut::<FlatScene>();
-        flat.0.samples = samples;
-        flat.0.adaptive = adaptive;
+        self.world
+            .resource_mut::<components::Quality>()
+            .set_if_neq(components::Quality { samples, adaptive });
     }
 
     /// Looks through `camera` from the next frame on (the user's view; a respawn
     /// returns to the asset's).
     pub fn set_camera(&mut self, camera: crate::trace::Camera) {
-        self.world.resource_mut::<FlatScene>().0.camera = camera;
+        self.world
+            .resource_mut::<components::View>()
+            .set_if_neq(components::View(camera));
     }
 
     /// The flat scene of the last frame.
     #[must_use]
     pub fn scene(&self) -> &crate::trace::Scene {
-        &self.world.resource::<FlatScene>().0
+        &self.world.resource::<FlatScene>().scene
+    }
+
+    /// What changed in the flat scene since the last call (everything, the
+    /// first time and after a respawn): for the tracer's incremental frames
+    /// (`Incremental::render_changed`).
+    pub fn take_change(&mut self) -> crate::trace::Change {
+        let mut flat = self.world.resource_mut::<FlatScene>();
+        std::mem::replace(
+            &mut flat.bypass_change_detection().change,
+            crate::trace::Change::none(),
+        )
     }
 
     /// Running or paused.

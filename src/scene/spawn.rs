@@ -3,8 +3,8 @@
 //! scene's static part (`view`).
 
 use super::components::{
-    Ball, CradleState, FlatScene, Floor, FrameImpacts, Light, Material, Pendulum, Rod, Shape,
-    SimClock, SimState, Strand, StrandOf, SwingBox, Transform,
+    Ball, CradleState, FlatScene, Floor, FrameImpacts, Light, Material, Pendulum, Quality, Rod,
+    Shape, SimClock, SimState, Strand, StrandOf, SwingBox, Transform, View,
 };
 use super::fit::static_scene;
 use super::layout::Layout;
@@ -79,7 +79,16 @@ fn insert_resources(world: &mut World, config: &Config) {
         SimState::Paused
     });
     // Camera, lights and render settings are the tracer's types from here on.
-    world.insert_resource(FlatScene(static_scene(config)));
+    let scene = static_scene(config);
+    world.insert_resource(View(scene.camera));
+    world.insert_resource(Quality {
+        samples: scene.samples,
+        adaptive: scene.adaptive,
+    });
+    world.insert_resource(FlatScene {
+        scene,
+        change: trace::Change::Any,
+    });
     let (lo, hi) = view::motion_bounds(config);
     world.insert_resource(SwingBox(lo, hi));
 }

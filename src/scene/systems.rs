@@ -1,8 +1,8 @@
 //! The frame's systems, in schedule order: input, physics, extract.
 
 use super::components::{
-    Ball, CradleState, FlatScene, FrameImpacts, Light, Material, Pendulum, Shape, SimClock,
-    SimState, Strand, StrandOf, SwingBox, Transform,
+    Ball, CradleState, FlatScene, FrameImpacts, Light, Material, Pendulum, Quality, Shape,
+    SimClock, SimState, Strand, StrandOf, SwingBox, Transform, View,
 };
 use super::spawn::{attach_point, ball_transform};
 use crate::trace;
@@ -17,14 +17,15 @@ type BallsRead<'w, 's> = Query<
     (With<Ball>, Without<Strand>),
 >;
 
-/// Everything the tracer draws, with whether it moves.
+/// Everything the tracer draws, with whether it moves, and whether each part
+/// changed since the last extract.
 type Drawables<'w, 's> = Query<
     'w,
     's,
     (
-        &'static Transform,
-        &'static Shape,
-        &'static Material,
+        Ref<'static, Transform>,
+        Ref<'static, Shape>,
+        Ref<'static, Material>,
         Has<Ball>,
         Has<Strand>,
     ),
@@ -69,8 +70,14 @@ pub fn place_balls(
     if !sim.is_changed() {
         return;
     }
+    // Only a transform that moves is written, so that its change tick tells
+    // the tracer what moved (a ball at rest keeps its pixels).
     for (p, mut t) in &mut balls {
-        *t = ball_transform(p.pivot, p.length, sim.snapshot.theta[p.index]);
+        t.set_if_neq(ball_transform(
+            p.pivot,
+            p.length,
+            sim.snapshot.theta[p.index],
+        ));
     }
 }
 
@@ -90,7 +97,7 @@ pub fn place_strands(
         }
     }
     for (of, mut t) in &mut strands {
-        *t = Transform::segment(of.anchor, tops[of.ball]);
+        t.set_if_neq(Transform::segment(of.anchor, tops[of.ball]));
     }
 }
 
@@ -106,17 +113,38 @@ fn string_floor(scene: &trace::Scene, d: f64) -> f64 {
     0.5 * PIXELS_WIDE * per_pixel * d
 }
 
+/// Extract: the user's view and the render quality into the flat scene, when
+/// they changed (then the tracer's next frame is full).
+pub fn apply_view(view: Res<View>, quality: Res<Quality>, mut flat: ResMut<FlatScene>) {
+    if view.is_changed() || quality.is_changed() {
+        let flat = &mut *flat;
+        flat.scene.camera = view.0;
+        flat.scene.samples = quality.samples;
+        flat.scene.adaptive = quality.adaptive;
+        flat.change.merge(trace::Change::Any);
+    }
+}
+
 /// Extract: copies each object's shape (from its transform) and material, and
 /// the lights, into the flat scene; the rest of it was set at spawn. Strings
 /// far from the camera are drawn [`string_floor`] thick, at least, and the
-/// swing box the tracer gets is widened to hold them.
+/// swing box the tracer gets is widened to hold them. What changed goes with
+/// it: the moving objects whose transforms changed, or anything when a
+/// static object, a shape, a material, a light or the swing box did.
 pub fn extract(
     objects: Drawables,
-    lights: Query<&Light>,
+    lights: Query<Ref<Light>>,
     swing: Res<SwingBox>,
     mut flat: ResMut<FlatScene>,
 ) {
-    let scene = &mut flat.0;
+    let FlatScene { scene, change } = &mut *flat;
+    let same_count =
+        scene.objects.len() == objects.iter().len() && scene.lights.len() == lights.iter().len();
+    let mut now = if same_count && !swing.is_changed() && !lights.iter().any(|l| l.is_changed()) {
+        trace::Change::none()
+    } else {
+        trace::Change::Any
+    };
     scene.objects.clear();
     // Each string's floor is from its own far end; the swing box is widened
     // by the floor at its corner furthest from the eye, which no string's
@@ -136,7 +164,15 @@ pub fn extract(
         .fold(0.0, f64::max);
     let most = string_floor(scene, far);
     let mut widened = 0.0_f64;
-    for (t, shape, material, is_ball, is_strand) in &objects {
+    for (i, (t, shape, material, is_ball, is_strand)) in objects.iter().enumerate() {
+        let moving = is_ball || is_strand;
+        if shape.is_changed() || material.is_changed() || (t.is_changed() && !moving) {
+            now = trace::Change::Any;
+        } else if t.is_changed()
+            && let trace::Change::Moved(list) = &mut now
+        {
+            list.push(i);
+        }
         let shape = match *shape {
             Shape::Sphere { radius } => trace::Shape::Sphere {
                 centre: t.translation.as_vec3(),
@@ -168,11 +204,12 @@ pub fn extract(
         scene.objects.push(trace::Object {
             shape,
             material: material.0,
-            moving: is_ball || is_strand,
+            moving,
         });
     }
     scene.lights.clear();
     scene.lights.extend(lights.iter().map(|l| l.0));
+    change.merge(now);
     // The strings drawn thicker stay inside the box widened as much.
     let grow = glam::Vec3::splat(widened as f32 * 1.001);
     scene.motion_bounds = Some((lo - grow, hi + grow));

@@ -12,7 +12,7 @@ use super::motion::RowMotion;
 use super::motion::{Cells, MotionGrid, Near, NearSet};
 use super::render::image;
 use super::retrace::{Moved, Piece, Spans, retrace_row};
-use super::scene::Scene;
+use super::scene::{Scene, Shape};
 use glam::Vec3;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -34,6 +34,67 @@ pub struct Changes<'a> {
     /// Per row, the pixels `x0..x1` that may have changed (`[0, 0]`: none);
     /// every other byte equals picture `since`'s.
     pub rows: &'a [[u32; 2]],
+}
+
+/// What changed since the frame a renderer traced last, as its caller knows it
+/// (the app's ECS, from the transforms its physics changed): the renderer
+/// re-traces around the objects named and keeps every other pixel, so the
+/// change must name every object that may have moved.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Change {
+    /// Only the shapes of these moving objects (indices into the scene's
+    /// objects) may differ; everything else is as it was.
+    Moved(Vec<usize>),
+    /// Anything may differ: the next frame is traced in full.
+    Any,
+}
+
+impl Default for Change {
+    /// Nothing is known: [`Change::Any`].
+    fn default() -> Self {
+        Self::Any
+    }
+}
+
+impl Change {
+    /// Nothing changed.
+    #[must_use]
+    pub fn none() -> Self {
+        Self::Moved(Vec::new())
+    }
+
+    /// What changed over this change and then `next`.
+    pub fn merge(&mut self, next: Self) {
+        match (&mut *self, next) {
+            (Self::Moved(a), Self::Moved(b)) => {
+                a.extend(b);
+                a.sort_unstable();
+                a.dedup();
+            }
+            (_, Self::Any) => *self = Self::Any,
+            (Self::Any, Self::Moved(_)) => {}
+        }
+    }
+
+    /// The moving objects of `after` whose shapes changed from `before` (the
+    /// same objects in the same order), when the two differ in nothing else
+    /// ([`Change::Any`] otherwise): the change found by comparing two scenes.
+    #[must_use]
+    pub fn between(before: &Scene, after: &Scene) -> Self {
+        if !same_but_motion(before, after) {
+            return Self::Any;
+        }
+        Self::Moved(
+            before
+                .objects
+                .iter()
+                .zip(&after.objects)
+                .enumerate()
+                .filter(|(_, (a, b))| a.moving && a.shape != b.shape)
+                .map(|(i, _)| i)
+                .collect(),
+        )
+    }
 }
 
 /// Whether `a` and `b` differ at most in the shapes of their moving objects: then
@@ -75,8 +136,11 @@ fn same_but_motion(a: &Scene, b: &Scene) -> bool {
 /// size, a static object) brings a full frame.
 #[derive(Debug, Default)]
 pub struct Incremental {
-    /// The scene of the last frame.
+    /// The scene of the last frame, kept by [`Self::render`] to find the
+    /// change by comparing.
     last: Option<Scene>,
+    /// The objects' shapes in the last frame: where the moved ones were.
+    shapes: Vec<Shape>,
     image: Option<Image>,
     /// Per row, each pixel's motion cells and segments when last traced.
     rows: Vec<RowMotion>,
@@ -93,21 +157,26 @@ pub struct Incremental {
     written: Vec<[u32; 2]>,
 }
 
-/// The objects that moved from `before` to `after` (same objects in the same
-/// order), where they were and where they are: their motion cells and shapes,
-/// and where `cam` sees them, their mirror images and their shadows (`Spans`).
-fn moved(grid: &MotionGrid, cam: &CameraRays, before: &Scene, after: &Scene) -> Moved {
+/// The objects of `list` that moved from `before` (their shapes in the last
+/// frame) to `after`, where they were and where they are: their motion cells
+/// and shapes, and where `cam` sees them, their mirror images and their
+/// shadows (`Spans`).
+fn moved(
+    grid: &MotionGrid,
+    cam: &CameraRays,
+    (before, after): (&[Shape], &Scene),
+    list: &[usize],
+) -> Moved {
     let mut out = Moved {
         lo: Vec3::INFINITY,
         hi: Vec3::NEG_INFINITY,
         ..Moved::default()
     };
-    let shapes = before
-        .objects
+    let shapes = list
         .iter()
-        .zip(&after.objects)
-        .filter(|(a, b)| a.moving && a.shape != b.shape)
-        .flat_map(|(a, b)| [&a.shape, &b.shape]);
+        .map(|&i| (&before[i], &after.objects[i].shape))
+        .filter(|(a, b)| a != b)
+        .flat_map(|(a, b)| [a, b]);
     let mut near = Vec::new();
     let mut pieces = Vec::new();
     // The moved balls where they were (even `i`) and where they are (odd): a
@@ -171,18 +240,44 @@ impl Incremental {
         Self::default()
     }
 
-    /// Renders `scene` on the current rayon pool and returns the picture.
+    /// Renders `scene` on the current rayon pool and returns the picture,
+    /// finding what changed by comparing it with the last frame's scene
+    /// ([`Change::between`]).
     pub fn render(&mut self, scene: &Scene) -> &Image {
+        let change = self
+            .last
+            .as_ref()
+            .map_or(Change::Any, |last| Change::between(last, scene));
+        self.render_changed(scene, &change);
+        self.last = Some(scene.clone());
+        self.image.as_ref().expect("rendered above")
+    }
+
+    /// Renders `scene` on the current rayon pool, `change` saying what changed
+    /// since the last frame this renderer traced, and returns the picture.
+    pub fn render_changed(&mut self, scene: &Scene, change: &Change) -> &Image {
+        self.last = None;
+        // The moved objects, if the change is one this renderer can follow.
+        let list = match change {
+            Change::Moved(list)
+                if self.shapes.len() == scene.objects.len()
+                    && list
+                        .iter()
+                        .all(|&i| scene.objects.get(i).is_some_and(|o| o.moving)) =>
+            {
+                Some(&list[..])
+            }
+            _ => None,
+        };
         // What moved since the last frame, found while the frame is prepared
         // (from the same camera and grid as the frame's).
-        let last = self.last.as_ref().filter(|l| same_but_motion(l, scene));
         let (frame, moved) = rayon::join(
             || Frame::new(scene, RenderOptions::FAST, true),
             || {
                 let (min, max) = scene.motion_bounds?;
                 let grid = MotionGrid::new(Aabb { min, max });
                 let cam = CameraRays::new(&scene.camera, scene.size.0, scene.size.1);
-                Some(moved(&grid, &cam, last?, scene))
+                Some(moved(&grid, &cam, (&self.shapes, scene), list?))
             },
         );
         let adaptive = frame.edge();
@@ -214,6 +309,9 @@ impl Incremental {
                     .sum();
             }
             self.since = Some(self.id);
+            for &i in list.unwrap_or_default() {
+                self.shapes[i] = scene.objects[i].shape;
+            }
         } else {
             let (img, rows, layers) = if let Some(threshold) = adaptive {
                 let (img, layers) = adaptive_full(&frame, threshold, (true, None));
@@ -227,9 +325,9 @@ impl Incremental {
             self.layers = layers;
             self.image = Some(img);
             self.full = true;
+            self.shapes = scene.objects.iter().map(|o| o.shape).collect();
         }
         self.id = id;
-        self.last = Some(scene.clone());
         self.image.as_ref().expect("rendered above")
     }
 

@@ -473,6 +473,7 @@ fn a_moving_view_traces_one_sample_per_pixel_until_it_rests() {
     assert!(aa > 1, "the default anti-aliases");
     assert_eq!(s.world.scene().samples, aa);
     s.view(ViewChange::Turn(5.0, 0.0));
+    s.step(now);
     assert_eq!(s.world.scene().samples, 1, "a moving view: one sample");
     let rest = s.settle().expect("the window wakes when it rests");
     s.step(now + Duration::from_millis(100));

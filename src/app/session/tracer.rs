@@ -4,7 +4,7 @@
 //! the compositor's work) and tracing share the CPUs instead of taking turns.
 //! Window-free.
 
-use crate::trace::{Changes, Image, Incremental, Scene};
+use crate::trace::{Change, Changes, Image, Incremental, Scene};
 use std::sync::mpsc;
 use std::time::Instant;
 
@@ -23,6 +23,8 @@ pub struct Tracer {
     pipelined: bool,
     /// A frame waits for [`Self::launch_due`].
     due: bool,
+    /// What changed since the renderer's last frame, not traced yet.
+    pending: Change,
 }
 
 impl Default for Tracer {
@@ -32,6 +34,7 @@ impl Default for Tracer {
             away: None,
             pipelined: false,
             due: false,
+            pending: Change::none(),
         }
     }
 }
@@ -58,46 +61,65 @@ impl Tracer {
         self.pipelined = true;
     }
 
-    /// A frame of `scene`: pipelined and `running`, left for
+    /// A frame of `scene`, `change` saying what changed since the frame
+    /// before (the world's `take_change`): pipelined and `running`, left for
     /// [`Self::launch_due`] (`None`); else traced now, with how long it took
     /// (ms).
-    pub fn frame(&mut self, pool: &rayon::ThreadPool, scene: &Scene, running: bool) -> Option<f64> {
+    pub fn frame(
+        &mut self,
+        pool: &rayon::ThreadPool,
+        (scene, change): (&Scene, Change),
+        running: bool,
+    ) -> Option<f64> {
         if self.pipelined && running {
+            self.pending.merge(change);
             self.due = true;
             None
         } else {
-            Some(self.trace(pool, scene))
+            Some(self.trace(pool, scene, change))
         }
     }
 
     /// Starts the frame [`Self::frame`] left, if it left one, tracing `scene`.
     pub fn launch_due(&mut self, pool: &rayon::ThreadPool, scene: &Scene) {
         if std::mem::take(&mut self.due) {
-            self.launch(pool, scene.clone());
+            self.launch(pool, scene.clone(), Change::none());
         }
     }
 
-    /// Traces `scene` on `pool` now (after the frame on the pool, if any): how
-    /// long it took (ms).
-    pub fn trace(&mut self, pool: &rayon::ThreadPool, scene: &Scene) -> f64 {
+    /// What changed since the renderer's last frame: `change`, after what
+    /// frames not traced left.
+    fn since_last(&mut self, change: Change) -> Change {
+        let mut all = std::mem::replace(&mut self.pending, Change::none());
+        all.merge(change);
+        all
+    }
+
+    /// Traces `scene` on `pool` now (after the frame on the pool, if any),
+    /// `change` saying what changed since the frame before: how long it took
+    /// (ms).
+    pub fn trace(&mut self, pool: &rayon::ThreadPool, scene: &Scene, change: Change) -> f64 {
         self.join();
+        let change = self.since_last(change);
         let renderer = self.home.get_or_insert_with(Incremental::new);
         let start = Instant::now();
         pool.install(|| {
-            renderer.render(scene);
+            renderer.render_changed(scene, &change);
         });
         start.elapsed().as_secs_f64() * 1e3
     }
 
-    /// Starts tracing `scene` on `pool` and returns at once: [`Self::join`]
-    /// takes the frame back.
-    pub fn launch(&mut self, pool: &rayon::ThreadPool, scene: Scene) {
+    /// Starts tracing `scene` on `pool` and returns at once, `change` saying
+    /// what changed since the frame before: [`Self::join`] takes the frame
+    /// back.
+    pub fn launch(&mut self, pool: &rayon::ThreadPool, scene: Scene, change: Change) {
         self.join();
+        let change = self.since_last(change);
         let mut renderer = self.home.take().unwrap_or_default();
         let (done, away) = mpsc::sync_channel(1);
         pool.spawn(move || {
             let start = Instant::now();
-            renderer.render(&scene);
+            renderer.render_changed(&scene, &change);
             // Nobody waits when the session has ended meanwhile: nothing to do.
             let _ = done.send((renderer, start.elapsed().as_secs_f64() * 1e3));
         });
@@ -135,8 +157,9 @@ mod tests {
         let (mut inline, mut away) = (Tracer::default(), Tracer::default());
         for _ in 0..4 {
             world.frame(0.05);
-            inline.trace(&pool, world.scene());
-            away.launch(&pool, world.scene().clone());
+            let change = world.take_change();
+            inline.trace(&pool, world.scene(), change.clone());
+            away.launch(&pool, world.scene().clone(), change);
             assert!(
                 away.image().is_none(),
                 "the renderer is away while it traces"
