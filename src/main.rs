@@ -102,8 +102,9 @@ fn run(job: Job) -> Result<(), Failure> {
             threads,
             frames,
             modes,
+            options,
             json,
-        } => bench::render::report(&config, &threads, frames, &modes, json, &mut out)?,
+        } => bench::render::report(&config, &threads, (frames, options), &modes, json, &mut out)?,
         Job::BenchPhysics { plan, json, plot } => {
             bench::physics::report(&plan, json, plot.as_deref(), &mut out)?;
         }

@@ -114,11 +114,12 @@ fn every_mix_of_the_skips_equals_the_reference() {
     config.start.lift = 2;
     let s = scene_at(&config, 0.37);
     let reference = trace::render_serial_with(&s, RenderOptions::FULL);
-    for bits in 0..8 {
+    for bits in 0..16 {
         let options = RenderOptions {
             tile_culling: bits & 1 != 0,
             shadow_culling: bits & 2 != 0,
             bvh: bits & 4 != 0,
+            packets: bits & 8 != 0,
         };
         let img = trace::render_serial_with(&s, options);
         assert!(img == reference, "{options:?}");

@@ -32,15 +32,16 @@ pub struct Row {
 
 /// Times `frames` frames of the swinging cradle (60 fps of simulated time, after two
 /// warm-up frames) with each thread count in `threads`, in each of `modes`
-/// (`full`: every pixel traced afresh; `incremental`: only what motion changed);
-/// calls `each` per row.
+/// (`full`: every pixel traced afresh with the skips of `options`;
+/// `incremental`: only what motion changed, with every skip); calls `each` per
+/// row.
 ///
 /// # Errors
 /// When a thread pool cannot be built.
 pub fn bench_render(
     config: &Config,
     threads: &[usize],
-    frames: u32,
+    (frames, options): (u32, trace::RenderOptions),
     modes: &[&'static str],
     mut each: impl FnMut(&Row),
 ) -> anyhow::Result<Vec<Row>> {
@@ -59,7 +60,9 @@ pub fn bench_render(
                 let change = world.take_change();
                 let start = Instant::now();
                 if mode == "full" {
-                    std::hint::black_box(pool.install(|| trace::render(world.scene())));
+                    std::hint::black_box(
+                        pool.install(|| trace::render_with(world.scene(), options)),
+                    );
                 } else {
                     std::hint::black_box(
                         pool.install(|| inc.render_changed(world.scene(), &change).rgba.len()),
@@ -98,7 +101,7 @@ pub fn bench_render(
 pub fn report(
     config: &Config,
     threads: &[usize],
-    frames: u32,
+    (frames, options): (u32, trace::RenderOptions),
     modes: &[&'static str],
     json: bool,
     out: &mut impl Write,
@@ -116,7 +119,7 @@ pub fn report(
     }
     let mut base = None;
     let mut written = Ok(());
-    bench_render(config, threads, frames, modes, |row| {
+    bench_render(config, threads, (frames, options), modes, |row| {
         let line = if json {
             serde_json::to_string(row).expect("a row of numbers and names serializes")
         } else {

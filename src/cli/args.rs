@@ -205,6 +205,24 @@ pub struct BenchRenderArgs {
     /// or both.
     #[arg(long, value_enum, default_value_t = BenchMode::Both)]
     pub mode: BenchMode,
+    /// With --mode full: trace without these skips, to see what each earns
+    /// (the same picture, more work); a comma-separated list.
+    #[arg(long, value_enum, value_delimiter = ',', value_name = "SKIP")]
+    pub without: Vec<Skip>,
+}
+
+/// `bench render --without`: the tracer's work-skipping, each of which leaves
+/// the picture as it is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum Skip {
+    /// Primary rays test only the objects that cover their 16x16 tile (packets need it).
+    Tiles,
+    /// Shadow rays test only the objects whose shadow can fall there.
+    Shadows,
+    /// Secondary rays walk a bounding volume hierarchy past 64 objects.
+    Bvh,
+    /// Eight pixels' centre samples at a time in SIMD lanes.
+    Packets,
 }
 
 /// `bench render --mode`.

@@ -4,7 +4,7 @@
 
 use super::args::{
     BenchCommand, BenchMode, BenchPhysicsArgs, BenchQualityArgs, BenchRenderArgs, BenchRockingArgs,
-    BenchStressArgs, Cli, Command, Common, RenderArgs, SimulateArgs,
+    BenchStressArgs, Cli, Command, Common, RenderArgs, SimulateArgs, Skip,
 };
 use super::overrides::{InputError, Short, flag_value};
 use crate::bench::physics::Plan;
@@ -59,6 +59,8 @@ pub enum Job {
         frames: u32,
         /// Which modes to time: `full`, `incremental` or both.
         modes: Vec<&'static str>,
+        /// The full frames' skips (`--without` turns some off).
+        options: crate::trace::RenderOptions,
         /// JSON Lines instead of a table.
         json: bool,
     },
@@ -173,11 +175,26 @@ impl Job {
                     BenchMode::Incremental => vec!["incremental"],
                     BenchMode::Both => vec!["full", "incremental"],
                 };
+                if !a.without.is_empty() && a.mode != BenchMode::Full {
+                    return Err(InputError::Flag(
+                        "--without applies to full frames: add --mode full (incremental frames \
+                         always use every skip)"
+                            .to_owned(),
+                    ));
+                }
+                let on = |s: Skip| !a.without.contains(&s);
+                let options = crate::trace::RenderOptions {
+                    tile_culling: on(Skip::Tiles),
+                    shadow_culling: on(Skip::Shadows),
+                    bvh: on(Skip::Bvh),
+                    packets: on(Skip::Packets),
+                };
                 Self::BenchRender {
                     config,
                     threads,
                     frames,
                     modes,
+                    options,
                     json: a.json,
                 }
             }

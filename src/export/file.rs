@@ -8,6 +8,7 @@ use std::fs::File;
 use std::io::{BufWriter, Read, Seek, Write};
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
+use tempfile::NamedTempFile;
 
 /// An output file that cannot be written.
 #[derive(Debug, thiserror::Error)]
@@ -175,12 +176,13 @@ pub fn clean_up_on_interrupt() {
     }
 }
 
-/// A file being written under a temporary name beside `path`; [`Self::commit`]
-/// renames it into place, dropping it unfinished removes it.
+/// A file being written under a temporary name beside `path` (a
+/// `tempfile::NamedTempFile`, which removes itself when dropped unfinished);
+/// [`Self::commit`] renames it into place.
 pub struct AtomicFile {
     path: PathBuf,
     tmp: PathBuf,
-    out: Option<BufWriter<File>>,
+    out: Option<BufWriter<NamedTempFile>>,
 }
 
 impl AtomicFile {
@@ -192,21 +194,25 @@ impl AtomicFile {
         let name = path
             .file_name()
             .map_or_else(|| "out".into(), |n| n.to_string_lossy().into_owned());
-        let tmp = path.with_file_name(format!(".{name}.{}.part", std::process::id()));
-        // Known before it exists: a signal between the two would otherwise leave
-        // an empty file no one removes.
-        if let Ok(mut live) = LIVE.lock() {
-            live.push(tmp.clone());
-        }
-        let file = File::create(&tmp).map_err(|e| {
-            if let Ok(mut live) = LIVE.lock() {
-                live.retain(|p| p != &tmp);
-            }
-            io_fail(path, &e)
-        })?;
+        let dir = path
+            .parent()
+            .filter(|p| !p.as_os_str().is_empty())
+            .unwrap_or(Path::new("."));
+        let file = tempfile::Builder::new()
+            .prefix(&format!(".{name}."))
+            .suffix(".part")
+            .make_in(dir, |tmp| {
+                // Known before it exists: a signal between the two would
+                // otherwise leave an empty file no one removes.
+                if let Ok(mut live) = LIVE.lock() {
+                    live.push(tmp.to_path_buf());
+                }
+                File::create_new(tmp).inspect_err(|_| forget(tmp))
+            })
+            .map_err(|e| io_fail(path, &e))?;
         Ok(Self {
             path: path.to_path_buf(),
-            tmp,
+            tmp: file.path().to_path_buf(),
             out: Some(BufWriter::new(file)),
         })
     }
@@ -220,18 +226,19 @@ impl AtomicFile {
         let file = out
             .into_inner()
             .map_err(|e| io_fail(&self.path, e.error()))?;
-        file.sync_all().map_err(|e| io_fail(&self.path, &e))?;
-        drop(file);
-        std::fs::rename(&self.tmp, &self.path).map_err(|e| io_fail(&self.path, &e))?;
-        self.forget();
+        file.as_file()
+            .sync_all()
+            .map_err(|e| io_fail(&self.path, &e))?;
+        file.persist(&self.path)
+            .map_err(|e| io_fail(&self.path, &e.error))?;
         Ok(())
     }
+}
 
-    /// Stops tracking the temporary name (renamed or removed).
-    fn forget(&self) {
-        if let Ok(mut live) = LIVE.lock() {
-            live.retain(|p| p != &self.tmp);
-        }
+/// Stops tracking temporary file `tmp` (renamed or removed).
+fn forget(tmp: &Path) {
+    if let Ok(mut live) = LIVE.lock() {
+        live.retain(|p| p != tmp);
     }
 }
 
@@ -253,12 +260,10 @@ impl Seek for AtomicFile {
 
 impl Drop for AtomicFile {
     fn drop(&mut self) {
-        if self.out.is_some() {
-            // Unfinished: leave no partial file behind.
-            self.out = None;
-            let _ = std::fs::remove_file(&self.tmp);
-            self.forget();
-        }
+        // Unfinished, the temporary file removes itself as it drops; renamed,
+        // it is gone under that name.
+        self.out = None;
+        forget(&self.tmp);
     }
 }
 

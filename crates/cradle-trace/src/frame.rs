@@ -23,6 +23,10 @@ use rayon::prelude::*;
 /// Which work-skipping the renderer may use. Each leaves the picture byte for byte
 /// as the full render makes it (tested); turning them off gives that reference.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[expect(
+    clippy::struct_excessive_bools,
+    reason = "four independent switches, each one skip the tests and `bench render --without` turn on and off"
+)]
 pub struct RenderOptions {
     /// Primary rays test only the objects whose screen bounds cover their tile.
     pub tile_culling: bool,
@@ -30,6 +34,9 @@ pub struct RenderOptions {
     pub shadow_culling: bool,
     /// Secondary rays walk a bounding volume hierarchy instead of every box.
     pub bvh: bool,
+    /// Eight pixels' centre samples at a time, in SIMD lanes (needs
+    /// `tile_culling`: a packet takes its tile's lists).
+    pub packets: bool,
 }
 
 impl RenderOptions {
@@ -38,12 +45,14 @@ impl RenderOptions {
         tile_culling: true,
         shadow_culling: true,
         bvh: true,
+        packets: true,
     };
     /// Nothing skipped: the reference the skips are tested against.
     pub const FULL: Self = Self {
         tile_culling: false,
         shadow_culling: false,
         bvh: false,
+        packets: false,
     };
 }
 
@@ -57,6 +66,8 @@ pub(crate) struct Frame<'a> {
     width: u32,
     height: u32,
     pub(crate) motion: Option<MotionGrid>,
+    /// Centre samples go in packets where the tile allows.
+    packets: bool,
     /// Adaptive anti-aliasing: the byte difference above which a pixel is an edge.
     edge: Option<f32>,
 }
@@ -83,6 +94,7 @@ impl<'a> Frame<'a> {
                 .adaptive
                 .filter(|_| scene.samples > 1)
                 .map(|t| t * 255.0),
+            packets: options.packets,
             motion: scene
                 .motion_bounds
                 .filter(|_| track)
@@ -179,7 +191,10 @@ impl<'a> Frame<'a> {
 
     /// The packet tracer for samples at `offsets`: centre samples with tiles.
     pub(crate) fn packets(&self, offsets: &[(f32, f32)]) -> Option<Packet<'_, 'a>> {
-        let tiles = self.tiles.as_ref().filter(|_| offsets == [(0.5, 0.5)])?;
+        let tiles = self
+            .tiles
+            .as_ref()
+            .filter(|_| self.packets && offsets == [(0.5, 0.5)])?;
         Some(Packet {
             p: &self.prepared,
             cam: &self.camera,

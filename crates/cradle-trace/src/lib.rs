@@ -43,5 +43,7 @@ mod wide;
 pub use color::{Image, srgb8};
 pub use incremental::{Change, Changes, Incremental};
 pub use prepared::Prepared;
-pub use render::{RenderOptions, pool, render, render_counting, render_serial, render_serial_with};
+pub use render::{
+    RenderOptions, pool, render, render_counting, render_serial, render_serial_with, render_with,
+};
 pub use scene::{Camera, Light, Material, Object, Scene, Shape};

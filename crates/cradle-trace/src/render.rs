@@ -66,7 +66,14 @@ pub fn render_serial_with(scene: &Scene, options: RenderOptions) -> Image {
 /// Rows in parallel on the current rayon pool; byte-identical to [`render_serial`].
 #[must_use]
 pub fn render(scene: &Scene) -> Image {
-    image(&Frame::new(scene, RenderOptions::FAST, false), true).0
+    render_with(scene, RenderOptions::FAST)
+}
+
+/// Rows in parallel on the current rayon pool with the given skips (to
+/// measure what each earns); the same bytes whatever they are.
+#[must_use]
+pub fn render_with(scene: &Scene, options: RenderOptions) -> Image {
+    image(&Frame::new(scene, options, false), true).0
 }
 
 /// [`render`], adding 1 to `rows_done` as each row of each pass is done, so
