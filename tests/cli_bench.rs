@@ -63,6 +63,44 @@ fn bench_render_mode_times_one_mode_alone() {
 }
 
 #[test]
+fn bench_render_without_skips_times_full_frames_and_needs_mode_full() {
+    let base = [
+        "bench",
+        "render",
+        "--json",
+        "--frames",
+        "1",
+        "--threads",
+        "1",
+        "--width",
+        "32",
+        "--height",
+        "16",
+    ];
+    let with = |extra: &[&str]| run(&[&base[..], extra].concat());
+    let o = with(&["--mode", "full", "--without", "tiles,shadows,bvh,packets"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let v = lines(&o);
+    assert_eq!(v.len(), 1);
+    assert_eq!(v[0]["mode"], "full");
+    for refused in [
+        &["--without", "bvh"][..],
+        &["--mode", "both", "--without", "bvh"],
+    ] {
+        let o = with(refused);
+        assert_eq!(o.status.code(), Some(2), "{refused:?}");
+        assert!(stderr(&o).contains("--mode full"), "{}", stderr(&o));
+    }
+    let o = with(&["--mode", "full", "--without", "mirrors"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("packets"),
+        "the allowed values: {}",
+        stderr(&o)
+    );
+}
+
+#[test]
 fn bench_physics_prints_each_integrator_and_step_and_plots() {
     let dir = temp_dir("bench-physics");
     let svg = dir.join("wp.svg");

@@ -157,47 +157,53 @@ impl Job {
         })
     }
 
+    /// `bench render`'s job: its flags checked, then the config `asset` loads.
+    fn bench_render(
+        a: &BenchRenderArgs,
+        asset: impl FnOnce() -> Result<Config, InputError>,
+    ) -> Result<Self, InputError> {
+        let frames = bench_frames(a)?;
+        if !a.without.is_empty() && a.mode != BenchMode::Full {
+            return Err(InputError::Flag(
+                "--without applies to full frames: add --mode full (incremental frames \
+                 always use every skip)"
+                    .to_owned(),
+            ));
+        }
+        let config = asset()?;
+        let cores = std::thread::available_parallelism().map_or(1, std::num::NonZero::get);
+        let threads = if config.render.threads > 0 {
+            vec![config.render.threads]
+        } else {
+            (1..=cores).collect()
+        };
+        let modes = match a.mode {
+            BenchMode::Full => vec!["full"],
+            BenchMode::Incremental => vec!["incremental"],
+            BenchMode::Both => vec!["full", "incremental"],
+        };
+        let on = |s: Skip| !a.without.contains(&s);
+        let options = crate::trace::RenderOptions {
+            tile_culling: on(Skip::Tiles),
+            shadow_culling: on(Skip::Shadows),
+            bvh: on(Skip::Bvh),
+            packets: on(Skip::Packets),
+        };
+        Ok(Self::BenchRender {
+            config,
+            threads,
+            frames,
+            modes,
+            options,
+            json: a.json,
+        })
+    }
+
     /// The `bench` subcommands' jobs.
     fn bench(cmd: BenchCommand, common: &Common) -> Result<Self, InputError> {
         let asset = || load(common).map(|(config, _)| config);
         Ok(match cmd {
-            BenchCommand::Render(a) => {
-                let frames = bench_frames(&a)?;
-                let config = asset()?;
-                let cores = std::thread::available_parallelism().map_or(1, std::num::NonZero::get);
-                let threads = if config.render.threads > 0 {
-                    vec![config.render.threads]
-                } else {
-                    (1..=cores).collect()
-                };
-                let modes = match a.mode {
-                    BenchMode::Full => vec!["full"],
-                    BenchMode::Incremental => vec!["incremental"],
-                    BenchMode::Both => vec!["full", "incremental"],
-                };
-                if !a.without.is_empty() && a.mode != BenchMode::Full {
-                    return Err(InputError::Flag(
-                        "--without applies to full frames: add --mode full (incremental frames \
-                         always use every skip)"
-                            .to_owned(),
-                    ));
-                }
-                let on = |s: Skip| !a.without.contains(&s);
-                let options = crate::trace::RenderOptions {
-                    tile_culling: on(Skip::Tiles),
-                    shadow_culling: on(Skip::Shadows),
-                    bvh: on(Skip::Bvh),
-                    packets: on(Skip::Packets),
-                };
-                Self::BenchRender {
-                    config,
-                    threads,
-                    frames,
-                    modes,
-                    options,
-                    json: a.json,
-                }
-            }
+            BenchCommand::Render(a) => Self::bench_render(&a, asset)?,
             BenchCommand::Physics(a) => {
                 let dts = bench_physics_dts(&a)?;
                 let config = asset()?;
