@@ -38,6 +38,14 @@ fn bad_flags_exit_2_with_the_valid_range() {
         ),
         (&["--every", "0"], "--every 0: not allowed; allowed: > 0"),
         (
+            &["--every", "abc"],
+            "--every abc: not a number; allowed: > 0",
+        ),
+        (
+            &["--every", "inf"],
+            "--every inf: not allowed; allowed: > 0",
+        ),
+        (
             &["--duration", "-1"],
             "--duration -1: not allowed; allowed: 0..=1e7",
         ),

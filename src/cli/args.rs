@@ -1,10 +1,13 @@
-//! The clap schema of the command line (DESIGN.md contract): subcommands, their
-//! flags and the common overrides, as typed. Nothing here checks ranges: `job`
-//! does that once, turning these into a [`super::Job`].
+//! The clap schema of the command line (docs/contracts.md): subcommands, their
+//! flags and the common overrides, as typed. A subcommand's number flags are
+//! checked against their ranges here, as they are parsed ([`InRange`]); the
+//! common overrides' ranges are the config's (`overrides`).
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
-/// A whole-number flag: its value, or a message with what `allowed`.
+/// A whole-number flag: its value, or a message with what `allowed`. The
+/// common overrides' ranges are the config's, checked when the config is
+/// validated with them applied (a flag's error then names the flag).
 fn whole(allowed: &'static str) -> impl Fn(&str) -> Result<i64, String> + Clone + Send + Sync {
     move |s: &str| {
         s.trim()
@@ -13,12 +16,91 @@ fn whole(allowed: &'static str) -> impl Fn(&str) -> Result<i64, String> + Clone 
     }
 }
 
-/// A number flag: a finite number, or a message with what `allowed`. Range checks
-/// come later, with the config's.
+/// A number flag: a finite number, or a message with what `allowed` (a
+/// common override: see [`whole`]).
 fn number(allowed: &'static str) -> impl Fn(&str) -> Result<f64, String> + Clone + Send + Sync {
     move |s: &str| match s.trim().parse::<f64>() {
         Ok(v) if v.is_finite() => Ok(v),
         _ => Err(format!("not a finite number; allowed: {allowed}")),
+    }
+}
+
+/// A subcommand's number flag, parsed and checked against its range in one
+/// place: a value that is not a number, not finite or out of range is
+/// refused with the flag, the value and what is allowed (exit code 2).
+#[derive(Clone, Copy)]
+struct InRange<T> {
+    ok: fn(T) -> bool,
+    allowed: &'static str,
+}
+
+/// [`InRange`] of the values `ok` takes, `allowed` saying which.
+fn in_range<T>(ok: fn(T) -> bool, allowed: &'static str) -> InRange<T> {
+    InRange { ok, allowed }
+}
+
+/// A number a flag can hold.
+trait FlagNumber: std::str::FromStr + Short + Copy + Send + Sync + 'static {
+    /// Not infinite nor NaN.
+    fn finite(self) -> bool;
+}
+
+impl FlagNumber for f64 {
+    fn finite(self) -> bool {
+        self.is_finite()
+    }
+}
+
+impl FlagNumber for i64 {
+    fn finite(self) -> bool {
+        true
+    }
+}
+
+impl<T: FlagNumber> clap::builder::TypedValueParser for InRange<T> {
+    type Value = T;
+
+    fn parse_ref(
+        &self,
+        cmd: &clap::Command,
+        arg: Option<&clap::Arg>,
+        value: &std::ffi::OsStr,
+    ) -> Result<T, clap::Error> {
+        let flag = arg
+            .and_then(clap::Arg::get_long)
+            .map_or_else(String::new, |l| format!("--{l} "));
+        let text = value.to_string_lossy();
+        let (why, shown) = match text.trim().parse::<T>() {
+            Ok(v) if v.finite() && (self.ok)(v) => return Ok(v),
+            Ok(v) => ("not allowed", v.short()),
+            Err(_) => ("not a number", text.trim().to_owned()),
+        };
+        let message = format!("{flag}{shown}: {why}; allowed: {}\n", self.allowed);
+        Err(clap::Error::raw(clap::error::ErrorKind::ValueValidation, message).with_cmd(cmd))
+    }
+}
+
+/// A number as a message shows it: as typed for ordinary magnitudes, with an
+/// exponent for extreme ones (1e300, not 301 digits).
+pub trait Short {
+    /// The text.
+    fn short(&self) -> String;
+}
+
+impl Short for f64 {
+    fn short(&self) -> String {
+        let a = self.abs();
+        if a != 0.0 && !(1e-5..1e16).contains(&a) {
+            format!("{self:e}")
+        } else {
+            format!("{self}")
+        }
+    }
+}
+
+impl Short for i64 {
+    fn short(&self) -> String {
+        self.to_string()
     }
 }
 use std::path::PathBuf;
@@ -56,7 +138,7 @@ pub struct RenderArgs {
     #[arg(long, value_name = "PATH")]
     pub out: Option<PathBuf>,
     /// Simulated time of the (first) frame (s), 0..=1e6.
-    #[arg(value_parser = number("0..=1e6 (s)"), 
+    #[arg(value_parser = in_range(|v: f64| (0.0..=1e6).contains(&v), "0..=1e6 (s)"), 
         long,
         default_value_t = 0.0,
         allow_negative_numbers = true,
@@ -64,10 +146,10 @@ pub struct RenderArgs {
     )]
     pub time: f64,
     /// Number of frames of a sequence or animation, 1..=100000 (animation default 60).
-    #[arg(value_parser = whole("1..=100000"), long, allow_negative_numbers = true, value_name = "N")]
+    #[arg(value_parser = in_range(|v: i64| (1..=100_000).contains(&v), "1..=100000"), long, allow_negative_numbers = true, value_name = "N")]
     pub frames: Option<i64>,
     /// Frames per second of simulated time, > 0 and <= 1000.
-    #[arg(value_parser = number("> 0 and <= 1000"), 
+    #[arg(value_parser = in_range(|v: f64| v > 0.0 && v <= 1000.0, "> 0 and <= 1000"), 
         long,
         default_value_t = 30.0,
         allow_negative_numbers = true,
@@ -83,7 +165,7 @@ pub struct RenderArgs {
     pub apng: Option<PathBuf>,
     /// With --frames and --out DIR/: render frames K..K+N-1 (files numbered from
     /// K), so that a long sequence splits across processes, 0..=10000000.
-    #[arg(value_parser = whole("0..=10000000"), long, allow_negative_numbers = true, value_name = "K")]
+    #[arg(value_parser = in_range(|v: i64| (0..=10_000_000).contains(&v), "0..=10000000"), long, allow_negative_numbers = true, value_name = "K")]
     pub first: Option<i64>,
     /// With a sequence or an animation: also write its soundtrack here (48 kHz,
     /// 16-bit stereo, as long as the frames).
@@ -116,7 +198,7 @@ pub struct BenchRockingArgs {
     #[arg(long, value_name = "FILE.svg")]
     pub plot: Option<PathBuf>,
     /// Simulated seconds, 1..=3600.
-    #[arg(value_parser = number("1..=3600 (s)"),
+    #[arg(value_parser = in_range(|v: f64| (1.0..=3600.0).contains(&v), "1..=3600 (s)"),
         long,
         default_value_t = 90.0,
         allow_negative_numbers = true,
@@ -135,7 +217,7 @@ pub struct BenchQualityArgs {
     #[arg(long, value_name = "FILE.svg")]
     pub plot: Option<PathBuf>,
     /// Frames timed per row (the median is reported), 1..=1000.
-    #[arg(value_parser = whole("1..=1000"), 
+    #[arg(value_parser = in_range(|v: i64| (1..=1000).contains(&v), "1..=1000"), 
         long,
         default_value_t = 3,
         allow_negative_numbers = true,
@@ -151,7 +233,7 @@ pub struct BenchStressArgs {
     #[arg(long)]
     pub json: bool,
     /// Run every scenario this many times longer than the test suite does, 0.01..=1000.
-    #[arg(value_parser = number("0.01..=1000"), 
+    #[arg(value_parser = in_range(|v: f64| (0.01..=1000.0).contains(&v), "0.01..=1000"), 
         long,
         default_value_t = 10.0,
         allow_negative_numbers = true,
@@ -170,7 +252,7 @@ pub struct BenchPhysicsArgs {
     #[arg(long, value_name = "FILE.svg")]
     pub plot: Option<PathBuf>,
     /// Simulated seconds per run, 0.1..=3600.
-    #[arg(value_parser = number("0.1..=3600 (s)"), 
+    #[arg(value_parser = in_range(|v: f64| (0.1..=3600.0).contains(&v), "0.1..=3600 (s)"), 
         long,
         default_value_t = 60.0,
         allow_negative_numbers = true,
@@ -178,7 +260,7 @@ pub struct BenchPhysicsArgs {
     )]
     pub duration: f64,
     /// Smallest step of the sweep (s), 1e-7..=1e-2 (the sweep runs from 1e-2 down).
-    #[arg(value_parser = number("1e-7..=1e-2 (s)"), 
+    #[arg(value_parser = in_range(|v: f64| (1e-7..=1e-2).contains(&v), "1e-7..=1e-2 (s)"), 
         long,
         default_value_t = 1e-5,
         allow_negative_numbers = true,
@@ -194,7 +276,7 @@ pub struct BenchRenderArgs {
     #[arg(long)]
     pub json: bool,
     /// Frames timed per thread count (the median is reported), 1..=10000.
-    #[arg(value_parser = whole("1..=10000"), 
+    #[arg(value_parser = in_range(|v: i64| (1..=10_000).contains(&v), "1..=10000"), 
         long,
         default_value_t = 15,
         allow_negative_numbers = true,
@@ -240,10 +322,10 @@ pub enum BenchMode {
 #[derive(Debug, Args)]
 pub struct SimulateArgs {
     /// Simulated time (s), 0..=1e7.
-    #[arg(value_parser = number("0..=1e7 (s)"), long, default_value_t = 10.0, allow_negative_numbers = true)]
+    #[arg(value_parser = in_range(|v: f64| (0.0..=1e7).contains(&v), "0..=1e7 (s)"), long, default_value_t = 10.0, allow_negative_numbers = true)]
     pub duration: f64,
     /// Sampling interval (s), > 0, at most 1e8 samples in all.
-    #[arg(value_parser = number("> 0 (s)"), long, default_value_t = 0.01, allow_negative_numbers = true)]
+    #[arg(value_parser = in_range(|v: f64| v > 0.0, "> 0 (s)"), long, default_value_t = 0.01, allow_negative_numbers = true)]
     pub every: f64,
     /// Also print each impact as it happens: `{"impact":{..}}` lines between
     /// the samples.

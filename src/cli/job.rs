@@ -2,11 +2,12 @@
 //! subcommand's own flags first (before anything is loaded), then the config with
 //! the common overrides. `main` only dispatches the job.
 
+use super::args::Short;
 use super::args::{
-    BenchCommand, BenchMode, BenchPhysicsArgs, BenchQualityArgs, BenchRenderArgs, BenchRockingArgs,
-    BenchStressArgs, Cli, Command, Common, RenderArgs, SimulateArgs, Skip,
+    BenchCommand, BenchMode, BenchPhysicsArgs, BenchRenderArgs, Cli, Command, Common, RenderArgs,
+    SimulateArgs, Skip,
 };
-use super::overrides::{InputError, Short, flag_value};
+use super::overrides::InputError;
 use crate::bench::physics::Plan;
 use crate::config::{Config, ConfigSource};
 use crate::export::{self, Kind};
@@ -162,7 +163,7 @@ impl Job {
         a: &BenchRenderArgs,
         asset: impl FnOnce() -> Result<Config, InputError>,
     ) -> Result<Self, InputError> {
-        let frames = bench_frames(a)?;
+        let frames = a.frames as u32;
         if !a.without.is_empty() && a.mode != BenchMode::Full {
             return Err(InputError::Flag(
                 "--without applies to full frames: add --mode full (incremental frames \
@@ -205,7 +206,7 @@ impl Job {
         Ok(match cmd {
             BenchCommand::Render(a) => Self::bench_render(&a, asset)?,
             BenchCommand::Physics(a) => {
-                let dts = bench_physics_dts(&a)?;
+                let dts = bench_physics_dts(&a);
                 let config = asset()?;
                 ignored(
                     common,
@@ -226,7 +227,7 @@ impl Job {
                 }
             }
             BenchCommand::Stress(a) => {
-                let scale = bench_stress_scale(&a)?;
+                let scale = a.scale;
                 ignored(
                     common,
                     &[],
@@ -240,7 +241,7 @@ impl Job {
                 }
             }
             BenchCommand::Rocking(a) => {
-                let duration = bench_rocking_duration(&a)?;
+                let duration = a.duration;
                 check_plot(a.plot.as_deref(), common)?;
                 let config = asset()?;
                 if config.contact.model != crate::config::ContactModel::Hertz {
@@ -261,7 +262,7 @@ impl Job {
                 }
             }
             BenchCommand::RenderQuality(a) => {
-                let frames = quality_frames(&a)?;
+                let frames = a.frames as u32;
                 let used: Vec<&str> = common
                     .given_flags()
                     .into_iter()
@@ -310,30 +311,11 @@ fn check_plot(plot: Option<&std::path::Path>, common: &Common) -> Result<(), Inp
         .map_err(|e| InputError::Flag(e.to_string()))
 }
 
-/// Checks `bench stress`' flags.
-///
-/// # Errors
-/// A flag out of range.
-fn bench_stress_scale(a: &BenchStressArgs) -> Result<f64, InputError> {
-    let ok = a.scale.is_finite() && (0.01..=1000.0).contains(&a.scale);
-    flag_value("--scale", a.scale, ok, "0.01..=1000")
-}
-
-/// Checks `bench rocking`'s flags (an error for one out of range).
-fn bench_rocking_duration(a: &BenchRockingArgs) -> Result<f64, InputError> {
-    let ok = a.duration.is_finite() && (1.0..=3600.0).contains(&a.duration);
-    flag_value("--duration", a.duration, ok, "1..=3600 (s)")
-}
-
 /// Checks `simulate`'s own flags.
 ///
 /// # Errors
 /// A flag out of range, with its range.
 fn check_simulate(a: &SimulateArgs) -> Result<(), InputError> {
-    let ok = a.duration.is_finite() && (0.0..=1e7).contains(&a.duration);
-    flag_value("--duration", a.duration, ok, "0..=1e7 (s)")?;
-    let ok = a.every.is_finite() && a.every > 0.0;
-    flag_value("--every", a.every, ok, "> 0 (s)")?;
     if a.duration / a.every > 1e8 {
         return Err(InputError::Flag(format!(
             "--every {}: too small for --duration {}; allowed: at most 1e8 samples (every >= duration / 1e8)",
@@ -350,20 +332,9 @@ fn check_simulate(a: &SimulateArgs) -> Result<(), InputError> {
 /// A flag out of range or a missing output, with what is allowed.
 fn render_output(a: &RenderArgs) -> Result<crate::headless::Output, InputError> {
     use crate::headless::Output;
-    let ok = a.time.is_finite() && (0.0..=1e6).contains(&a.time);
-    flag_value("--time", a.time, ok, "0..=1e6 (s)")?;
-    let ok = a.fps.is_finite() && a.fps > 0.0 && a.fps <= 1000.0;
-    flag_value("--fps", a.fps, ok, "> 0 and <= 1000")?;
-    let frames = match a.frames {
-        None => None,
-        Some(n) => {
-            Some(flag_value("--frames", n, (1..=100_000).contains(&n), "1..=100000")? as u32)
-        }
-    };
-    let first = match a.first {
-        None => 0,
-        Some(k) => flag_value("--first", k, (0..=10_000_000).contains(&k), "0..=10000000")? as u32,
-    };
+    // (The ranges were checked as the flags were parsed.)
+    let frames = a.frames.map(|n| n as u32);
+    let first = a.first.map_or(0, |k| k as u32);
     let animation = match (&a.gif, &a.apng) {
         (Some(_), Some(_)) => {
             return Err(InputError::Flag(
@@ -457,11 +428,7 @@ fn render_output(a: &RenderArgs) -> Result<crate::headless::Output, InputError> 
 ///
 /// # Errors
 /// A flag out of range.
-fn bench_physics_dts(a: &BenchPhysicsArgs) -> Result<Vec<f64>, InputError> {
-    let ok = a.duration.is_finite() && (0.1..=3600.0).contains(&a.duration);
-    flag_value("--duration", a.duration, ok, "0.1..=3600 (s)")?;
-    let ok = a.min_dt.is_finite() && (1e-7..=1e-2).contains(&a.min_dt);
-    flag_value("--min-dt", a.min_dt, ok, "1e-7..=1e-2 (s)")?;
+fn bench_physics_dts(a: &BenchPhysicsArgs) -> Vec<f64> {
     // Three steps per decade from 1e-2 down to min_dt.
     let mut dts = Vec::new();
     for i in 0.. {
@@ -471,23 +438,5 @@ fn bench_physics_dts(a: &BenchPhysicsArgs) -> Result<Vec<f64>, InputError> {
         }
         dts.push(dt);
     }
-    Ok(dts)
-}
-
-/// Checks `bench render`'s flags; returns the frames per thread count.
-///
-/// # Errors
-/// A flag out of range.
-fn bench_frames(a: &BenchRenderArgs) -> Result<u32, InputError> {
-    let ok = (1..=10_000).contains(&a.frames);
-    flag_value("--frames", a.frames, ok, "1..=10000").map(|f| f as u32)
-}
-
-/// Checks `bench render-quality`'s flags; returns the frames per row.
-///
-/// # Errors
-/// A flag out of range.
-fn quality_frames(a: &BenchQualityArgs) -> Result<u32, InputError> {
-    let ok = (1..=1000).contains(&a.frames);
-    flag_value("--frames", a.frames, ok, "1..=1000").map(|f| f as u32)
+    dts
 }

@@ -2,7 +2,7 @@
 //! then the config is validated again, and an error names the flag that set the
 //! field with its valid range (or the field of the asset a flag made invalid).
 
-use super::args::{AaFlag, Common, ContactFlag, IntegratorFlag};
+use super::args::{AaFlag, Common, ContactFlag, IntegratorFlag, Short};
 use crate::config::{Config, ConfigSource, ContactModel, FieldError};
 use crate::physics::Integrator;
 
@@ -191,46 +191,5 @@ impl From<IntegratorFlag> for Integrator {
             IntegratorFlag::Rk4 => Self::Rk4,
             IntegratorFlag::Yoshida4 => Self::Yoshida4,
         }
-    }
-}
-
-/// `v` when `ok`; else the flag's error, naming what is allowed.
-pub(super) fn flag_value<T: Short>(
-    flag: &str,
-    v: T,
-    ok: bool,
-    allowed: &str,
-) -> Result<T, InputError> {
-    if ok {
-        Ok(v)
-    } else {
-        Err(InputError::Flag(format!(
-            "{flag} {}: not allowed; allowed: {allowed}",
-            v.short()
-        )))
-    }
-}
-
-/// A number as a message shows it: as typed for ordinary magnitudes, with an
-/// exponent for extreme ones (1e300, not 301 digits).
-pub(super) trait Short {
-    /// The text.
-    fn short(&self) -> String;
-}
-
-impl Short for f64 {
-    fn short(&self) -> String {
-        let a = self.abs();
-        if a != 0.0 && !(1e-5..1e16).contains(&a) {
-            format!("{self:e}")
-        } else {
-            format!("{self}")
-        }
-    }
-}
-
-impl Short for i64 {
-    fn short(&self) -> String {
-        self.to_string()
     }
 }
