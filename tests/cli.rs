@@ -9,7 +9,7 @@ use std::process::Command;
 
 #[test]
 fn bad_flags_exit_2_with_the_valid_range() {
-    let cases: [(&[&str], &str); 10] = [
+    let cases: [(&[&str], &str); 12] = [
         (
             &["--balls", "0"],
             "--balls 0: not allowed; allowed: 1..=200",
