@@ -5,10 +5,9 @@
 //! default cradle.
 
 use super::geometry::{Aabb, Ray};
+use super::tuning::BVH_LEAF as LEAF;
+use super::tuning::WHOLE_RUNS_PAST;
 use glam::Vec3;
-
-/// Objects per leaf at most.
-const LEAF: usize = 2;
 
 #[derive(Debug, Clone, Copy)]
 struct Node {
@@ -64,9 +63,6 @@ fn sah_split(boxes: &[Aabb], items: &mut [usize], ok: impl Fn(usize) -> bool) ->
     items.sort_by(|&a, &b| centre(a)[axis].total_cmp(&centre(b)[axis]).then(a.cmp(&b)));
     (axis, best.2)
 }
-
-/// Parts of more than this many runs are cut into whole runs.
-const WHOLE_RUNS_PAST: usize = 8;
 
 /// `boxes` (item `k` is `boxes[k]`) in runs of at most `size` that lie close
 /// together: cut by the surface area heuristic until each part fits in one

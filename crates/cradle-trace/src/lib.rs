@@ -38,6 +38,7 @@ pub mod shadow;
 mod simd;
 mod supersample;
 pub mod tiles;
+mod tuning;
 mod wide;
 
 pub use color::{Image, srgb8};

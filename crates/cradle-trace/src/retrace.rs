@@ -11,6 +11,7 @@ use glam::Vec3;
 
 mod moved;
 mod screen;
+use super::tuning::PACKET_AT_LEAST;
 pub(crate) use moved::Moved;
 pub(crate) use screen::{Piece, Spans};
 
@@ -40,13 +41,6 @@ impl Notes<'_> {
         }
     }
 }
-
-/// A run of eight pixels holding at least this many to re-trace goes as a packet
-/// (which traces all eight); fewer go one by one. Chosen by callgrind on the
-/// default swing: 1 (always a packet) 167M instructions an incremental frame at
-/// one sample, 3 155M, 5 151M, 6 150M, never 159M; later, with the default
-/// anti-aliasing, 4 1M more than 5 and 6 0.5M fewer (100.4M -> 99.9M).
-const PACKET_AT_LEAST: usize = 6;
 
 /// Re-traces the pixels of row `y` that `moved` may have changed, at samples
 /// `offsets`, in packets where eight pixels in a row hold at least

@@ -8,11 +8,9 @@ use super::geometry::SURFACE_OFFSET;
 use super::geometry::{Aabb, hit_plane};
 use super::prepared::Prepared;
 use super::scene::Shape;
+pub use super::tuning::TILE;
 use glam::Vec3;
 use std::sync::atomic::{AtomicU64, Ordering};
-
-/// Tile edge in pixels.
-pub const TILE: u32 = 16;
 
 /// Primary-ray candidates per tile, and for each plane the candidates of the
 /// rays it reflects.
@@ -68,7 +66,7 @@ pub struct Reaching {
 
 impl Reaching {
     /// At most this many; a packet reached by more is traced pixel by pixel.
-    pub const MAX: usize = 16;
+    pub const MAX: usize = super::tuning::TILE_LIST_AT_MOST;
 
     /// The object indices, in query order.
     #[must_use]

@@ -16,11 +16,8 @@
 
 use super::geometry::{Aabb, Ray, T_MIN};
 use super::simd::{Build, Kernel, Simd};
+pub(crate) use super::tuning::WIDE_AT_MOST;
 use glam::Vec3;
-
-/// With the hierarchy on, scenes of at most this many bounded objects scan their
-/// boxes eight at a time instead of walking it.
-pub(crate) const WIDE_AT_MOST: usize = 64;
 
 /// Boxes per chunk.
 pub(crate) const W: usize = 8;

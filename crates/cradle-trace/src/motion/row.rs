@@ -4,6 +4,8 @@
 //! incremental frame.
 
 use super::{Cells, Seg};
+/// Blocks per super-block of [`RowMotion::supers`] (`tuning`).
+pub(crate) use crate::tuning::SUPER;
 
 /// What a row's rays passed: per pixel its motion cells, and its segments in the
 /// motion box, `segs[span[k][0]..span[k][1]]` for pixel `k`. Without spans
@@ -29,10 +31,6 @@ pub(crate) struct RowMotion {
 
 /// Pixels per block of [`RowMotion::blocks`].
 pub(crate) const BLOCK: usize = 8;
-/// Blocks per super-block of [`RowMotion::supers`]: most blocks of a row meet
-/// no moved cell, and scanning them all read 2.4 kB a row (a third of the
-/// motion filter's cache misses).
-pub(crate) const SUPER: usize = 8;
 
 impl RowMotion {
     /// A record of `width` pixels to fill; `track`: with cells and segments.

@@ -31,11 +31,8 @@ use crate::material::BAILOUT;
 use crate::scene::Shape;
 use crate::shade::shade_from;
 use crate::simd::{Kernel, Simd};
+use crate::tuning::SHARED;
 use glam::Vec3;
-
-/// Fewer lanes than this on one object are traced one by one, by the scalar
-/// path: cheaper than the lanes for one.
-const SHARED: u32 = 2;
 
 /// Levels a packet's rays can pass through: depths 0 to 16 (the most
 /// `max_depth` allows).

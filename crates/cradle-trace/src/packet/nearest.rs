@@ -14,6 +14,7 @@ use super::{F8, L3, LANES, Packet, store3};
 use crate::geometry::Geom;
 use crate::geometry::Ray;
 use crate::simd::Simd;
+use crate::tuning::SCAN_AT_MOST;
 
 /// The nearest hits of a level's lanes: the lanes that meet nothing (bits),
 /// the object each other lane meets (its index as `f32`), and where the scan
@@ -112,12 +113,6 @@ impl<F: Copy> Nearest<F> {
         }
     }
 }
-
-/// Up to this many bounded objects the lanes' nearest hit scans the boxes over
-/// the lanes (a run of up to eight at a time behind its hull); past it each lane
-/// walks the hierarchy. Measured with the hulls: 200 balls (612 objects) cost
-/// 2,493 instructions per pixel scanning, 2,588 walking.
-const SCAN_AT_MOST: usize = 1024;
 
 impl Packet<'_, '_> {
     /// Per lane of `live`, the nearest hit of its ray as `closest_from` finds

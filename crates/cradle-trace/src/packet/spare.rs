@@ -6,13 +6,11 @@
 
 use super::LANES;
 use crate::motion::Seg;
+use crate::tuning::LANE_SEGMENTS as ROOM;
 use std::cell::RefCell;
 
 /// A packet's segment buffers, one per lane.
 pub(crate) type LaneSegs = [Vec<Seg>; LANES];
-
-/// Segments a lane holds before its buffer grows (a tracked frame).
-const ROOM: usize = 16;
 
 thread_local! {
     /// The sets given back on this thread (more than one only while packets
