@@ -30,24 +30,28 @@ fn bench_render_prints_full_and_incremental_json_lines_per_thread_count() {
     }
 }
 
+/// `bench render` of one frame on one thread at 32x16, in JSON, with `extra`.
+fn tiny_render(extra: &[&str]) -> std::process::Output {
+    let base = [
+        "bench",
+        "render",
+        "--json",
+        "--frames",
+        "1",
+        "--threads",
+        "1",
+        "--width",
+        "32",
+        "--height",
+        "16",
+    ];
+    run(&[&base[..], extra].concat())
+}
+
 #[test]
 fn bench_render_mode_times_one_mode_alone() {
     for (mode, want) in [("full", "full"), ("incremental", "incremental")] {
-        let o = run(&[
-            "bench",
-            "render",
-            "--json",
-            "--frames",
-            "1",
-            "--threads",
-            "1",
-            "--width",
-            "32",
-            "--height",
-            "16",
-            "--mode",
-            mode,
-        ]);
+        let o = tiny_render(&["--mode", mode]);
         assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
         let v = lines(&o);
         assert_eq!(v.len(), 1, "one row for one thread count and one mode");
@@ -64,20 +68,7 @@ fn bench_render_mode_times_one_mode_alone() {
 
 #[test]
 fn bench_render_without_skips_times_full_frames_and_needs_mode_full() {
-    let base = [
-        "bench",
-        "render",
-        "--json",
-        "--frames",
-        "1",
-        "--threads",
-        "1",
-        "--width",
-        "32",
-        "--height",
-        "16",
-    ];
-    let with = |extra: &[&str]| run(&[&base[..], extra].concat());
+    let with = tiny_render;
     let o = with(&["--mode", "full", "--without", "tiles,shadows,bvh,packets"]);
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     let v = lines(&o);

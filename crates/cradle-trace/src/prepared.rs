@@ -1,15 +1,20 @@
 //! A frame's scene made ready to trace: world-space bounds per object, one box
-//! around everything but the planes, and the queries the shading needs (nearest
-//! hit, any hit).
+//! around everything but the planes, the culling structures built for it
+//! (shadow footprints per plane and light, shadow casters per object, the
+//! hierarchy), and the queries the shading needs: the nearest hit, and
+//! whether anything lies between a point and a light (through the casters' or
+//! the footprints' lists where shadow culling is on, or through every object,
+//! the reference; a plane's own rays never test it).
 
 use super::bvh::{Bvh, runs};
-use super::casters::Casters;
+use super::casters::{Casters, clear_of, piece_boxes};
 use super::geometry::{Aabb, Geom, Hit, Ray, bounds, hit_plane, hit_sphere};
 use super::material::Phong;
-use super::scene::Scene;
+use super::scene::{Scene, Shape};
 use super::shadow::Footprints;
 use super::wide::{W, WIDE_AT_MOST, WideBoxes};
 use glam::Vec3;
+use rayon::prelude::*;
 use std::cell::Cell;
 
 /// The scene with its acceleration data.
@@ -38,9 +43,6 @@ pub struct Prepared<'a> {
     pub(crate) group: Aabb,
     pub(crate) planes: Vec<usize>,
 }
-
-mod culling;
-mod occlusion;
 
 impl<'a> Prepared<'a> {
     /// Bounds for every object of `scene`.
@@ -301,4 +303,164 @@ impl<'a> Prepared<'a> {
     pub fn planes(&self) -> &[usize] {
         &self.planes
     }
+
+    /// Turns shadow culling ([`Footprints`]) on or off (off: every shadow ray
+    /// tests every object, the reference).
+    #[must_use]
+    pub fn with_shadow_culling(mut self, on: bool) -> Self {
+        if !on {
+            (self.footprints, self.casters) = (None, None);
+            return self;
+        }
+        // The footprints and the casters are independent: built side by side.
+        let this = &self;
+        let (footprints, casters) = rayon::join(|| this.footprints_of(), || this.casters_of());
+        (self.footprints, self.casters) = (Some(footprints), Some(casters));
+        self
+    }
+
+    /// Per plane, per light, the footprints of the bounded objects.
+    fn footprints_of(&self) -> Vec<Vec<Option<Footprints>>> {
+        let scene = self.scene;
+        self.planes
+            .iter()
+            .map(|&i| {
+                let Shape::Plane { point, normal } = scene.objects[i].shape else {
+                    unreachable!("only planes are unbounded")
+                };
+                scene
+                    .lights
+                    .iter()
+                    .map(|l| {
+                        let pieces = |i: usize| piece_boxes(&scene.objects[i].shape);
+                        Footprints::new(point, normal, l, &self.bounded, pieces)
+                    })
+                    .collect()
+            })
+            .collect()
+    }
+
+    /// Per object, the objects that can block its shadow rays.
+    fn casters_of(&self) -> Vec<Option<Casters>> {
+        let scene = self.scene;
+        // Beyond a few dozen objects, find each piece's casters through a
+        // hierarchy rather than by testing every object.
+        let boxes: Vec<Aabb> = self.bounded.iter().map(|&(_, b)| b).collect();
+        let bvh = (boxes.len() > 32).then(|| Bvh::new(&boxes));
+        // (Object by object over the pool: each takes a list per light and
+        // piece, and a frame waits for them before it traces.)
+        scene
+            .objects
+            .par_iter()
+            .enumerate()
+            .map(|(i, o)| {
+                let bvh = bvh.as_ref().map(|b| (b, &boxes[..]));
+                Casters::new((i, &o.shape), &scene.lights, &self.bounded, bvh)
+            })
+            .collect()
+    }
+
+    /// Whether anything lies on the ray before `t_max` (shadow rays: any hit ends them).
+    #[must_use]
+    pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
+        self.occluded_by(usize::MAX, ray, t_max, None)
+    }
+
+    /// [`Self::occluded`] for a shadow ray towards light `light` from a point of
+    /// object `from` (a plane's own rays do not test it): with shadow culling,
+    /// from a plane only the objects whose shadow can fall there are tested.
+    /// The same answer either way.
+    #[must_use]
+    pub fn occluded_towards(
+        &self,
+        (from, outside): (usize, bool),
+        light: usize,
+        ray: &Ray,
+        t_max: f32,
+    ) -> bool {
+        if let Some(list) = self.casters.as_ref().and_then(|c| {
+            let clear = outside && clear_of(self.geom(from), ray.origin);
+            c.get(from)?.as_ref()?.at(light, ray.origin, clear)
+        }) {
+            if self.occluded_by_planes(from, ray, t_max) {
+                return true;
+            }
+            let inv = ray.dir.recip();
+            return list.scan(
+                ray,
+                inv,
+                || t_max,
+                |i, _, _| self.hit_object(i, ray).is_some_and(|(t, _)| t < t_max),
+            );
+        }
+        self.occluded_by(from, ray, t_max, self.footprints(from, light))
+    }
+
+    /// [`Self::occluded`] for a shadow ray from a point of object `from` that
+    /// only a plane can block (its start is where no bounded object casts a
+    /// shadow: [`Footprints::region_clear`]). A plane's own shadow rays do not
+    /// test it ([`Self::closest_from`]).
+    #[must_use]
+    pub fn occluded_by_planes(&self, from: usize, ray: &Ray, t_max: f32) -> bool {
+        let own = self.own_plane(Some(from));
+        self.planes
+            .iter()
+            .any(|&i| i != own && self.hit_object(i, ray).is_some_and(|(t, _)| t < t_max))
+    }
+
+    /// `from` where it is a plane, else `usize::MAX`: the plane a ray leaving
+    /// `from` does not test.
+    #[must_use]
+    pub fn own_plane(&self, from: Option<usize>) -> usize {
+        from.filter(|&i| self.plane_slot.get(i).is_some_and(Option::is_some))
+            .unwrap_or(usize::MAX)
+    }
+
+    /// Any hit before `t_max` on a plane (but `from`'s own), or, inside the box
+    /// around them all, on a bounded object (each tested through its own box):
+    /// all of them, or those `footprints` leaves for the ray's start.
+    fn occluded_by(
+        &self,
+        from: usize,
+        ray: &Ray,
+        t_max: f32,
+        footprints: Option<&Footprints>,
+    ) -> bool {
+        if self.occluded_by_planes(from, ray, t_max) {
+            return true;
+        }
+        let blocks = |i: usize| self.hit_object(i, ray).is_some_and(|(t, _)| t < t_max);
+        let inv = ray.dir.recip();
+        if !self.group.hit(ray, inv, t_max) {
+            return false;
+        }
+        let test = |i: usize| self.boxes[i].hit(ray, inv, t_max) && blocks(i);
+        match (
+            footprints.and_then(|fp| fp.candidates(ray.origin)),
+            &self.bvh,
+        ) {
+            (Some((cell, always)), _) => cell.iter().chain(always).any(|&i| test(i)),
+            (None, Some(_)) if self.bounded.len() <= WIDE_AT_MOST => {
+                self.wide
+                    .list()
+                    .scan(ray, inv, || t_max, |i, _, _| blocks(i))
+            }
+            (None, Some(bvh)) => bvh.traverse(
+                ray,
+                inv,
+                || t_max,
+                |k| {
+                    let (i, b) = self.bounded[k];
+                    b.hit(ray, inv, t_max) && blocks(i)
+                },
+            ),
+            (None, None) => self
+                .bounded
+                .iter()
+                .any(|&(i, ref b)| b.hit(ray, inv, t_max) && blocks(i)),
+        }
+    }
 }
+
+#[cfg(test)]
+mod tests;
