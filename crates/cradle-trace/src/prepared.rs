@@ -397,9 +397,8 @@ impl<'a> Prepared<'a> {
     }
 
     /// [`Self::occluded`] for a shadow ray from a point of object `from` that
-    /// only a plane can block (its start is where no bounded object casts a
-    /// shadow: [`Footprints::region_clear`]). A plane's own shadow rays do not
-    /// test it ([`Self::closest_from`]).
+    /// only a plane can block (its footprint cell holds no bounded object). A
+    /// plane's own shadow rays do not test it ([`Self::closest_from`]).
     #[must_use]
     pub fn occluded_by_planes(&self, from: usize, ray: &Ray, t_max: f32) -> bool {
         let own = self.own_plane(Some(from));

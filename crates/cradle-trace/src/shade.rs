@@ -1,7 +1,7 @@
 //! The scalar fast path: the reference's shading (`reference::shade`) with
 //! its rays answered from the tiles' lists where a primary pixel has them (a
-//! tile no caster can shadow tests only the planes; a plane's mirror ray only
-//! its tile's mirror candidates), and each ray's segment noted for incremental
+//! plane's mirror ray tests only its tile's mirror candidates; shadow rays the
+//! casters' or footprints' lists, `Prepared::occluded_towards`), and each ray's segment noted for incremental
 //! frames through a [`Record`] (nothing at all for [`NoRecord`]). It gives the
 //! reference's hits, so the reference's bytes (tested).
 
@@ -55,14 +55,7 @@ impl<R: Record> Paths for Tiled<'_, R> {
     ) -> bool {
         let free = Self::from_eye_on_plane(p, hit, depth);
         self.record.segment(shadow, dist, free);
-        if self
-            .tile(depth)
-            .is_some_and(|(t, x, y)| t.shadow_clear(p, (hit.object, light), x, y))
-        {
-            p.occluded_by_planes(hit.object, shadow, dist)
-        } else {
-            p.occluded_towards((hit.object, hit.outside), light, shadow, dist)
-        }
+        p.occluded_towards((hit.object, hit.outside), light, shadow, dist)
     }
 
     #[inline]

@@ -270,57 +270,6 @@ impl Footprints {
         (clamp(c.x, self.n.0), clamp(c.y, self.n.1))
     }
 
-    /// Whether nothing can shadow any point within `lift` (m) of the convex region
-    /// of the plane with corners `corners`: no object reaches the light's height,
-    /// and every cell the region's shadow-ray starts project into is empty. Then a
-    /// shadow ray from there can only be blocked by a plane.
-    ///
-    /// The starts lie in the prism of the region lifted by `-lift..=lift` along the
-    /// normal; seen from the light their projections lie in the hull of the
-    /// prism's eight projected corners (a projection keeps a convex set on one side
-    /// of the light convex), padded as the rectangles are for rounding.
-    #[must_use]
-    pub fn region_clear(&self, corners: &[Vec3; 4], lift: f32) -> bool {
-        if !self.always.is_empty() {
-            return false;
-        }
-        if self.starts.is_empty() {
-            return true;
-        }
-        let mut lo = Vec2::splat(f32::INFINITY);
-        let mut hi = Vec2::splat(f32::NEG_INFINITY);
-        for c in corners {
-            for h in [-lift, lift] {
-                let Some(q) = self.project(*c + self.normal * h) else {
-                    return false;
-                };
-                lo = lo.min(q);
-                hi = hi.max(q);
-            }
-        }
-        if !(lo.is_finite() && hi.is_finite()) {
-            return false;
-        }
-        let pad = Vec2::splat(1e-5 + 1e-4 * lo.abs().max(hi.abs()).max_element());
-        let (lo, hi) = (
-            (lo - self.min) * self.inv_cell,
-            (hi - self.min) * self.inv_cell,
-        );
-        let (lo, hi) = (lo - pad * self.inv_cell, hi + pad * self.inv_cell);
-        let n = Vec2::new(self.n.0 as f32, self.n.1 as f32);
-        // Entirely off the grid: `candidates` gives such starts no cell at all.
-        if hi.x < 0.0 || hi.y < 0.0 || lo.x >= n.x || lo.y >= n.y {
-            return true;
-        }
-        let cell = |v: f32, n: usize| (v.max(0.0) as usize).min(n - 1);
-        let (x0, y0) = (cell(lo.x, self.n.0), cell(lo.y, self.n.1));
-        let (x1, y1) = (cell(hi.x, self.n.0), cell(hi.y, self.n.1));
-        (y0..=y1).all(|y| {
-            let row = y * self.n.0;
-            self.starts[row + x0] == self.starts[row + x1 + 1]
-        })
-    }
-
     /// The objects that can block a shadow ray from `start` (a point on the lit
     /// side of the plane, or lifted off it): its cell's, and the ones that can
     /// shadow any point. `None` when `start` projects nowhere useful (behind the

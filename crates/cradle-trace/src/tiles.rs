@@ -4,13 +4,11 @@
 //! the query order, so ties resolve the same way too).
 
 use super::camera::CameraRays;
-use super::geometry::SURFACE_OFFSET;
-use super::geometry::{Aabb, hit_plane};
+use super::geometry::Aabb;
 use super::prepared::Prepared;
 use super::scene::Shape;
 pub use super::tuning::TILE;
 use glam::Vec3;
-use std::sync::atomic::{AtomicU64, Ordering};
 
 /// Primary-ray candidates per tile, and for each plane the candidates of the
 /// rays it reflects.
@@ -22,40 +20,7 @@ pub struct Tiles {
     rects: Vec<[f32; 4]>,
     /// Per plane (object index), lists for its mirror rays.
     mirrors: Vec<(usize, Lists)>,
-    /// Per plane, per tile, a bit per light whose shadow rays from the plane's
-    /// points in the tile only a plane can block: found the first time a tile
-    /// is asked, as most frames of a moving scene ask few.
-    clear: Vec<Clear>,
-    /// The camera and picture size, for the shadow bits.
-    cam: CameraRays,
-    size: (u32, u32),
 }
-
-/// A plane's shadow bits ([`Tiles::shadow_clear`]): per tile, [`FOUND`] once
-/// found, with a bit per light (of the first 32) below it.
-#[derive(Debug)]
-struct Clear {
-    object: usize,
-    point: Vec3,
-    normal: Vec3,
-    bits: Vec<AtomicU64>,
-}
-
-impl Clone for Clear {
-    fn clone(&self) -> Self {
-        Self {
-            bits: self
-                .bits
-                .iter()
-                .map(|b| AtomicU64::new(b.load(Ordering::Relaxed)))
-                .collect(),
-            ..*self
-        }
-    }
-}
-
-/// The bit of a tile's shadow bits that says they were found.
-const FOUND: u64 = 1 << 32;
 
 /// The bounded candidates whose rectangles reach a packet's pixels.
 #[derive(Debug, Clone, Copy, Default)]
@@ -149,23 +114,11 @@ impl Tiles {
             },
             || lists_and_rects(objects.iter().copied(), cam, width, height),
         );
-        let tiles = (width.div_ceil(TILE) * height.div_ceil(TILE)) as usize;
-        let clear = planes()
-            .map(|(object, point, normal)| Clear {
-                object,
-                point,
-                normal,
-                bits: (0..tiles).map(|_| AtomicU64::new(0)).collect(),
-            })
-            .collect();
         Self {
             across: width.div_ceil(TILE),
             lists,
             rects,
             mirrors,
-            clear,
-            cam: *cam,
-            size: (width, height),
         }
     }
 
@@ -206,41 +159,6 @@ impl Tiles {
         Some(first)
     }
 
-    /// Whether the shadow rays towards light `light` from plane `plane`'s points
-    /// seen through pixel `(x, y)` can only be blocked by a plane (`p`: the
-    /// scene the tiles were made for). A tile's bits are found the first time
-    /// it is asked ([`clear_lights`]); threads that find them at once store the
-    /// same bits.
-    #[must_use]
-    #[inline]
-    pub fn shadow_clear(
-        &self,
-        p: &Prepared<'_>,
-        (plane, light): (usize, usize),
-        x: u32,
-        y: u32,
-    ) -> bool {
-        let Some(c) = self.clear.iter().find(|c| c.object == plane) else {
-            return false;
-        };
-        let slot = &c.bits[self.tile(x, y)];
-        let mut bits = slot.load(Ordering::Relaxed);
-        if bits & FOUND == 0 {
-            bits = self.find_clear(p, c, (x, y));
-            slot.store(bits, Ordering::Relaxed);
-        }
-        light < 32 && bits & (1 << light) != 0
-    }
-
-    /// [`Self::shadow_clear`]'s bits of the tile of pixel `(x, y)`, the first
-    /// time they are asked (out of line: the asking is the hot path).
-    #[cold]
-    #[inline(never)]
-    fn find_clear(&self, p: &Prepared<'_>, c: &Clear, (x, y): (u32, u32)) -> u64 {
-        let tile = (x / TILE, y / TILE);
-        FOUND | u64::from(clear_lights(p, c, &self.cam, self.size, tile))
-    }
-
     /// The candidates of pixel `(x, y)`.
     #[must_use]
     pub fn at(&self, x: u32, y: u32) -> &[usize] {
@@ -261,47 +179,6 @@ impl Tiles {
     fn tile(&self, x: u32, y: u32) -> usize {
         ((y / TILE) * self.across + x / TILE) as usize
     }
-}
-
-/// For tile `(col, row)`, a bit per light (of the first 32) whose shadow rays
-/// from the points of plane `c` seen in the tile only a plane can block
-/// ([`Footprints::region_clear`](super::shadow::Footprints::region_clear) of the
-/// region the tile's rays, one pixel wider on each side, meet the plane in).
-fn clear_lights(
-    p: &Prepared<'_>,
-    c: &Clear,
-    cam: &CameraRays,
-    (width, height): (u32, u32),
-    (col, row): (u32, u32),
-) -> u32 {
-    let (x0, y0) = ((col * TILE) as f32 - 1.0, (row * TILE) as f32 - 1.0);
-    let x1 = (((col + 1) * TILE).min(width)) as f32 + 1.0;
-    let y1 = (((row + 1) * TILE).min(height)) as f32 + 1.0;
-    let mut corners = [Vec3::ZERO; 4];
-    for (corner, (x, y)) in corners
-        .iter_mut()
-        .zip([(x0, y0), (x1, y0), (x0, y1), (x1, y1)])
-    {
-        let ray = cam.ray(x, y);
-        match hit_plane(&ray, c.point, c.normal) {
-            Some(t) => *corner = ray.at(t),
-            None => return 0,
-        }
-    }
-    // Starts are lifted by SURFACE_OFFSET; their points lie off the plane by
-    // rounding, a few ulps of their coordinates: twice the offset, plus 1e-5
-    // of the largest coordinate, holds both.
-    let size = corners
-        .iter()
-        .map(|c| c.abs().max_element())
-        .fold(1.0, f32::max);
-    let lift = 2.0 * SURFACE_OFFSET + 1e-5 * size;
-    (0..p.scene.lights.len().min(32))
-        .filter(|&light| {
-            p.footprints(c.object, light)
-                .is_some_and(|f| f.region_clear(&corners, lift))
-        })
-        .fold(0, |bits, light| bits | 1 << light)
 }
 
 /// Each tile's list of objects, in one vector: tile `t`'s are

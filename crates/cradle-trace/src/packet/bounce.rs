@@ -259,7 +259,7 @@ impl Packet<'_, '_> {
                 start,
                 nn,
             };
-            let here = self.local_lanes(s, met, (0, 0), (group, from_eye), &hit);
+            let here = self.local_lanes(s, met, (group, from_eye), &hit);
             color = select3::<S>(s.mask(group), &here, &color);
             let r = object.material.reflective;
             if r > 0.0 && ray.depth < p.scene.max_depth {

@@ -35,7 +35,7 @@ impl Packet<'_, '_> {
         hit: &Surface<S::F>,
     ) -> L3<S::F> {
         // Camera rays met the floor: their shadow rays are free.
-        let mut color = self.local_lanes(s, Met::Floor(floor), (x0, y), (on, 0xFF), hit);
+        let mut color = self.local_lanes(s, Met::Floor(floor), (on, 0xFF), hit);
         let r = floor.material.reflective;
         // weight * r * bound, at weight 1.
         if r > 0.0 && 0 < self.p.scene.max_depth && r * self.bound >= BAILOUT {
@@ -50,13 +50,12 @@ impl Packet<'_, '_> {
     /// `shade`'s lights of what the lanes `on` met (`met`) at `hit`, before
     /// any reflection: ambient, Lambert and Phong terms, each light's shadow
     /// rays traced over the lanes (free in the lanes of `free`,
-    /// `Motion::free`).
+    /// [`crate::motion::Record`]).
     #[inline(always)]
     pub(super) fn local_lanes<S: Simd>(
         &self,
         s: S,
         met: Met<'_>,
-        (x0, y): (u32, u32),
         (on, free): (u8, u8),
         hit: &Surface<S::F>,
     ) -> L3<S::F> {
@@ -107,7 +106,7 @@ impl Packet<'_, '_> {
             self.note_lanes(s, (traced, free), (start, &to_light), dist);
             let rays = (start, &to_light, dist);
             let blocked = match met {
-                Met::Floor(floor) => self.shadows(s, floor, (x0, y, li), rays, want),
+                Met::Floor(floor) => self.shadows(s, floor, li, rays, want),
                 Met::Object {
                     object,
                     plane: true,
@@ -195,26 +194,17 @@ impl Packet<'_, '_> {
     }
 
     /// Per lane, whether the shadow ray from `start` towards light `li` is
-    /// blocked (lanes facing away, `lambert <= 0`, are not traced): where no
-    /// caster can shadow the tile, only the planes are tested; elsewhere what
-    /// the lane's footprint cell lists too ([`Self::occluded_lanes`]).
+    /// blocked (lanes facing away, `lambert <= 0`, are not traced): what the
+    /// lane's footprint cell lists say ([`Self::occluded_lanes`]).
     #[inline(always)]
     fn shadows<S: Simd>(
         &self,
         s: S,
         floor: &Floor<'_>,
-        (x0, y, li): (u32, u32, usize),
+        li: usize,
         (start, to_light, dist): (&L3<S::F>, &L3<S::F>, S::F),
         lambert: S::F,
     ) -> S::M {
-        if self.tiles.shadow_clear(self.p, (floor.object, li), x0, y) {
-            let mut blocked = s.mask(0);
-            // Not the floor itself (`Prepared::occluded_by_planes`).
-            for &k in self.p.planes().iter().filter(|&&k| k != floor.object) {
-                blocked = blocked | S::lt(self.plane_hits(s, k, start, to_light), dist);
-            }
-            return blocked;
-        }
         let want = S::bits(S::lt(s.splat(0.0), lambert));
         s.mask(self.occluded_lanes(s, (floor.object, li), (start, to_light), dist, want))
     }

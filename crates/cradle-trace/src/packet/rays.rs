@@ -40,7 +40,7 @@ pub(super) struct Bounce8 {
 }
 
 /// What the lanes to shade met: the packet's floor seen from the eye (depth
-/// 0, with its tile's shadow bits), or object `object` at any depth (a
+/// 0), or object `object` at any depth (a
 /// plane or not), met from outside in the lanes of `outside`.
 #[derive(Clone, Copy)]
 pub(super) enum Met<'m> {
