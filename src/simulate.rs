@@ -1,4 +1,4 @@
-//! `newtons-cradle simulate`: the cradle's state as JSON Lines (DESIGN.md contract).
+//! `newtons-cradle simulate`: the cradle's state as JSON Lines (docs/contracts.md).
 //!
 //! Line 1 `{"params":{..}}`; then one line per sample at `t = n * every` (a
 //! product, never a running sum) up to the duration; last `{"summary":{..}}`.

@@ -16,7 +16,7 @@ use serde::Serialize;
 use std::io::Write;
 use std::path::Path;
 
-/// One point of the diagram; as JSON, one line of the DESIGN.md contract (`dt`
+/// One point of the diagram; as JSON, one line of the contract (docs/contracts.md) (`dt`
 /// null for `exact`, which has no step).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Point {

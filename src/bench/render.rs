@@ -10,7 +10,7 @@ use serde::Serialize;
 use std::io::Write;
 use std::time::Instant;
 
-/// One row of the table; as JSON, one line of the DESIGN.md contract (its keys in
+/// One row of the table; as JSON, one line of the contract (docs/contracts.md) (its keys in
 /// this order).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Row {

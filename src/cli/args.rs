@@ -357,7 +357,7 @@ pub enum IntegratorFlag {
     Yoshida4,
 }
 
-/// The common overrides (DESIGN.md): each replaces one config field.
+/// The common overrides (docs/contracts.md): each replaces one config field.
 #[derive(Debug, Clone, Args, Default)]
 pub struct Common {
     /// Config asset (default: ./assets/cradle.ron if present, else the built-in one).

@@ -1,4 +1,4 @@
-//! The command line (DESIGN.md contract): the clap schema ([`args`]), the common
+//! The command line (docs/contracts.md): the clap schema ([`args`]), the common
 //! overrides applied to a config ([`overrides`]), and the typed [`Job`] that the
 //! two become after every check ([`job`]).
 
