@@ -298,7 +298,7 @@ impl Packet<'_, '_> {
             self.nearest_of(s, others, &d, t)
         };
         let on_floor = !front;
-        // Camera rays: free (`Motion::free`).
+        // Camera rays: free (`Record::segment`'s `free`).
         self.note_lanes(s, (on_floor, 0xFF), (&splat3(s, c.origin), &d), t);
         // closest_among: the normal faces the ray (`denom` is normal.dot(dir)).
         let back = S::lt(k(0.0), denom);

@@ -185,7 +185,7 @@ impl Packet<'_, '_> {
             origin: origin.lane(i),
             dir: dir.lane(i),
         };
-        // Free lanes (`Motion::free`): camera rays, and mirror rays of camera
+        // Free lanes (`Record::segment`'s `free`): camera rays, and mirror rays of camera
         // rays off a plane.
         let free = if ray.depth == 0 { 0xFF } else { ray.free };
         // `shade` of no hit notes the ray to infinity.

@@ -19,7 +19,7 @@ use glam::Vec3;
 impl Packet<'_, '_> {
     /// In a tracked frame, notes for each lane of `on` the segment of its ray
     /// from `origin` along `dir` up to `t`: its cells (but not in the lanes of
-    /// `free`, as `Motion::free`), and its part in the motion box (lane by
+    /// `free`, as `Record::segment` takes it), and its part in the motion box (lane by
     /// lane, in order).
     #[inline(always)]
     pub(super) fn note_lanes<S: Simd>(

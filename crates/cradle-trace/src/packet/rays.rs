@@ -21,7 +21,7 @@ pub(super) struct Bounce<F> {
     pub(super) d: L3<F>,
     pub(super) depth: u32,
     pub(super) weight: F,
-    /// The lanes whose rays are free (`Motion::free`): mirror rays of camera
+    /// The lanes whose rays are free (`Record::segment`'s `free`): mirror rays of camera
     /// rays that met a plane (camera rays, at depth 0, are free in every lane).
     pub(super) free: u8,
     /// Per lane, the plane the ray leaves (its index as `f32`), which it does

@@ -24,7 +24,7 @@ pub(crate) struct Moved {
     /// decide.
     pub(crate) coarse: bool,
     /// Per row, where the moved shapes may meet pixels' free segments, which
-    /// leave no cells (`Motion::free`).
+    /// leave no cells (`Record::segment`'s `free`).
     pub(crate) spans: Spans,
 }
 

@@ -1,5 +1,5 @@
 //! The motion filter's screen half: where on the picture a moved shape can
-//! change a pixel through the pixel's free segments (`Motion::free`), which
+//! change a pixel through the pixel's free segments (`Record::segment`'s `free`), which
 //! leave no cells. A camera ray comes near a shape only where the shape shows
 //! on the screen; the mirror ray of a camera ray off a plane only where the
 //! shape's mirror image in the plane shows; and a shadow ray from where a
