@@ -10,7 +10,7 @@ use super::color::{Image, srgb8};
 use super::geometry::Aabb;
 use super::material::radiance_bound;
 use super::motion::{Cells, Motion, MotionGrid, NoRecord, Record, RowMotion, Seg};
-use super::packet::{LANES, Packet};
+use super::packet::{LANES, LaneNotes, Packet};
 use super::prepared::Prepared;
 use super::reference::{self, Plain};
 use super::sampling::sample_offsets;
@@ -195,17 +195,11 @@ impl<'a> Frame<'a> {
             .tiles
             .as_ref()
             .filter(|_| self.packets && offsets == [(0.5, 0.5)])?;
-        Some(Packet {
-            p: &self.prepared,
-            cam: &self.camera,
-            tiles,
-            bound: self.bound,
-            motion: self.motion,
-            marks: std::cell::Cell::new([0; LANES]),
-            // The thread's spare buffers for a packet's segments.
-            segs: std::cell::RefCell::new(crate::packet::spare::take(self.motion.is_some())),
-            colors: std::cell::Cell::new([[0.0; LANES]; 3]),
-        })
+        Some(Packet::new(
+            (&self.prepared, &self.camera, tiles),
+            self.bound,
+            LaneNotes::new(self.motion),
+        ))
     }
 
     /// Traces a whole row with `offsets`; returns each pixel's motion cells and
@@ -239,13 +233,13 @@ impl<'a> Frame<'a> {
                     x += lanes;
                     continue;
                 }
-                let marks = if track { pk.marks() } else { [0; LANES] };
+                let marks = if track { pk.notes.marks() } else { [0; LANES] };
                 for i in x..x + lanes {
                     rm.begin(track);
                     if done & (1 << (i - x)) != 0 {
                         if track {
                             rm.cells[i as usize] = marks[(i - x) as usize];
-                            pk.lane_segs((i - x) as usize, &mut rm.segs);
+                            pk.notes.lane_segs((i - x) as usize, &mut rm.segs);
                         }
                         continue;
                     }

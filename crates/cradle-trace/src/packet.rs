@@ -14,11 +14,15 @@
 //!
 //! The kernel is written once over a lane build `S: Simd` (`crate::simd`): one
 //! AVX instruction per operation where the CPU has AVX2 (chosen at run time, in
-//! `Packet::floor`), plain loops over arrays elsewhere. Rays and hits are here,
-//! the shading in `lanes`, the bounces past it in `bounce` (their nearest hits
-//! in `nearest`), the objects met on the way in `occlusion` and `objects`, the
-//! lane vectors in `vec`. A plane's own shadow and mirror rays never test it
-//! (`Prepared::closest_from`), here as in the scalar path.
+//! `Packet::floor`), plain loops over arrays elsewhere. Its types, bottom up:
+//! the lane vectors (`vec`), hit tests (`hits`, `lookup`) and rays (`rays`);
+//! [`Scan`], the scene's nearest-hit and shadow queries over the lanes;
+//! [`LaneNotes`], what the lanes' rays pass through in a tracked frame;
+//! [`Lights`], a surface's lights and shadow rays; [`Bounces`], the rays past
+//! a first hit, level by level; and the packet itself, the eye's rays to the
+//! floor, its shading and mirror rays, and anti-aliasing's extra samples. A
+//! plane's own shadow and mirror rays never test it (`Prepared::closest_from`),
+//! here as in the scalar path.
 
 #![expect(
     clippy::inline_always,
@@ -28,13 +32,12 @@
 use super::camera::CameraRays;
 use super::geometry::SURFACE_OFFSET;
 use super::geometry::T_MIN;
-use super::motion::{Cells, Motion, MotionGrid, Seg};
+use super::material::BAILOUT;
 use super::prepared::Prepared;
-use super::scene::{Material, Shape};
-use super::simd::{Build, Kernel, Simd};
+use super::simd::{Build, Kernel, Portable, Simd};
 use super::tiles::{Reaching, Tiles};
 use glam::Vec3;
-use std::cell::{Cell, RefCell};
+use std::cell::Cell;
 
 /// Pixels per packet.
 pub const LANES: usize = 8;
@@ -43,136 +46,61 @@ mod bounce;
 mod hits;
 #[cfg(test)]
 mod lane_tests;
-mod lanes;
+mod lights;
 mod lookup;
 mod nearest;
 mod notes;
-mod objects;
-mod occlusion;
 mod rays;
-mod samples;
-pub(crate) mod spare;
+mod scan;
+mod spare;
 mod vec;
 
-use vec::{L3, Surface, load3, splat3, store3};
+use bounce::{Bounces, bounce_copy};
+use lights::Lights;
+pub(crate) use notes::LaneNotes;
+use rays::{Bounce, Bounce8, Floor, Met};
+use scan::Scan;
+use vec::{F8, L3, Surface, V8, f8, select3, splat3, store3};
 
 pub use super::simd::force_portable;
 
-type F8 = [f32; LANES];
-
-/// Eight vectors, one per lane.
-#[derive(Clone, Copy)]
-struct V8 {
-    x: F8,
-    y: F8,
-    z: F8,
-}
-
-/// The lanes `f(0)..f(7)`. A plain loop, which inlines and vectorizes;
-/// `std::array::from_fn` calls its closure through a wrapper that stays a call.
-#[inline(always)]
-fn f8(f: impl FnMut(usize) -> f32) -> F8 {
-    lanes(f)
-}
-
-/// [`f8`] for any lane type.
-#[inline(always)]
-fn lanes<T: Copy + Default>(mut f: impl FnMut(usize) -> T) -> [T; LANES] {
-    let mut out = [T::default(); LANES];
-    for (i, o) in out.iter_mut().enumerate() {
-        *o = f(i);
-    }
-    out
-}
-
-/// The lanes of `among` (bits) whose `keys` equal `key`. (A plain loop, no
-/// closure: it inlines into the AVX2 build.)
-#[inline(always)]
-fn lanes_with<T: PartialEq>(keys: &[T; LANES], key: &T, among: u8) -> u8 {
-    let mut bits = 0u8;
-    for (i, k) in keys.iter().enumerate() {
-        if k == key {
-            bits |= 1 << i;
-        }
-    }
-    bits & among
-}
-
-impl V8 {
-    const ZERO: V8 = V8 {
-        x: [0.0; LANES],
-        y: [0.0; LANES],
-        z: [0.0; LANES],
-    };
-
-    #[inline(always)]
-    fn lane(&self, i: usize) -> Vec3 {
-        Vec3::new(self.x[i], self.y[i], self.z[i])
-    }
-
-    /// Sets lane `i` to `v`.
-    fn set(&mut self, i: usize, v: Vec3) {
-        (self.x[i], self.y[i], self.z[i]) = (v.x, v.y, v.z);
-    }
-}
-
-/// The floor plane a packet shades: its object, point, normal and material.
-#[derive(Clone, Copy)]
-pub(crate) struct Floor<'a> {
-    object: usize,
-    normal: Vec3,
-    material: &'a Material,
-    /// `(point - eye).dot(normal)`: the numerator of every primary ray's hit.
-    num: f32,
-}
-
-impl<'a> Floor<'a> {
-    /// Plane `object` (the only thing a packet's rays can hit).
-    pub(crate) fn of(p: &'a Prepared<'_>, cam: &CameraRays, object: usize) -> Option<Self> {
-        let o = &p.scene.objects[object];
-        let Shape::Plane { point, normal } = o.shape else {
-            return None;
-        };
-        Some(Self {
-            object,
-            normal,
-            material: &o.material,
-            // hit_plane: (point - ray.origin).dot(normal), the eye for every lane.
-            num: (point - cam.origin).dot(normal),
-        })
-    }
-}
-
-/// What a packet needs besides its pixels.
+/// A packet tracer: the frame's prepared scene, camera, tiles and radiance
+/// bound, the notes its lanes leave in a tracked frame, and the colours of the
+/// last packet.
 pub(crate) struct Packet<'a, 'p> {
-    pub(crate) p: &'a Prepared<'p>,
-    pub(crate) cam: &'a CameraRays,
-    pub(crate) tiles: &'a Tiles,
-    pub(crate) bound: f32,
-    /// The motion grid of a tracked frame: each lane notes the cells its rays
-    /// pass through, as the scalar path does.
-    pub(crate) motion: Option<MotionGrid>,
-    /// The cells each lane's rays passed through (with `motion`).
-    pub(crate) marks: Cell<[Cells; LANES]>,
-    /// The segments of each lane's rays inside the motion box, in the order
-    /// traced (with `motion`).
-    pub(crate) segs: RefCell<[Vec<Seg>; LANES]>,
+    p: &'a Prepared<'p>,
+    cam: &'a CameraRays,
+    tiles: &'a Tiles,
+    bound: f32,
+    /// What each lane's rays passed through (in a tracked frame).
+    pub(crate) notes: LaneNotes,
     /// The linear colours of the last packet's lanes (those it wrote), as
     /// red, green and blue lanes: see [`Self::color`].
-    pub(crate) colors: Cell<[F8; 3]>,
+    colors: Cell<[F8; 3]>,
 }
 
-impl Drop for Packet<'_, '_> {
-    /// Gives the lanes' segment buffers back to the thread's spares.
-    fn drop(&mut self) {
-        spare::give(std::mem::take(self.segs.get_mut()));
+impl<'a, 'p> Packet<'a, 'p> {
+    /// A packet tracer of the frame prepared as `p`, seen through `cam`, its
+    /// candidates in `tiles`, with radiance bound `bound`, noting its lanes'
+    /// motion in `notes`.
+    pub(crate) fn new(
+        (p, cam, tiles): (&'a Prepared<'p>, &'a CameraRays, &'a Tiles),
+        bound: f32,
+        notes: LaneNotes,
+    ) -> Self {
+        Self {
+            p,
+            cam,
+            tiles,
+            bound,
+            notes,
+            colors: Cell::new([[0.0; LANES]; 3]),
+        }
     }
-}
 
-impl Packet<'_, '_> {
     /// Traces pixels `x..x + 8` of row `y` into `span` (8 RGBA pixels) where
     /// the floor is the one plane their tile offers and the nearest hit
-    /// ([`Self::floor`]): the lanes written (their cells: [`Self::marks`]).
+    /// ([`Self::floor`]): the lanes written (their cells: `notes`).
     #[inline(always)]
     pub(crate) fn run(&self, x: u32, y: u32, span: &mut [u8]) -> u8 {
         let mut others = Reaching::default();
@@ -186,44 +114,67 @@ impl Packet<'_, '_> {
         }
     }
 
-    /// Forgets the last packet's cells and segments (in a tracked frame).
-    pub(crate) fn fresh(&self) {
-        if self.motion.is_some() {
-            self.marks.set([0; LANES]);
-            self.segs.borrow_mut().iter_mut().for_each(Vec::clear);
-        }
-    }
-
-    /// The cells each lane's rays passed through in the last packet (in a
-    /// tracked frame).
-    pub(crate) fn marks(&self) -> [Cells; LANES] {
-        self.marks.get()
-    }
-
-    /// What `f` returns, given a `Motion` for lane `i` (lent the lane's
-    /// segments, to append to) whose cells then go to the lane's in a tracked
-    /// frame: the scalar path's tracing of one lane.
-    pub(crate) fn in_lane(&self, i: usize, f: impl FnOnce(&mut Motion) -> Vec3) -> Vec3 {
-        let lent = std::mem::take(&mut self.segs.borrow_mut()[i]);
-        let mut motion = Motion::with(self.motion, lent);
-        let c = f(&mut motion);
-        if self.motion.is_some() {
-            let m = &self.marks.as_array_of_cells()[i];
-            m.set(m.get() | motion.mask);
-        }
-        self.segs.borrow_mut()[i] = motion.segs;
-        c
-    }
-
     /// Lane `i`'s linear colour in the last packet.
     pub(crate) fn color(&self, i: usize) -> Vec3 {
         let [r, g, b] = self.colors.get();
         Vec3::new(r[i], g[i], b[i])
     }
 
-    /// Appends the segments lane `i` noted in the last packet to `out`.
-    pub(crate) fn lane_segs(&self, i: usize, out: &mut Vec<Seg>) {
-        out.extend_from_slice(&self.segs.borrow()[i]);
+    /// The radiance of the camera rays through the picture points `at` (at
+    /// most [`LANES`]; lane `i` is `at[i]`), as `CameraRays::ray` makes them,
+    /// each traced by the bounces from the eye as the scalar `trace_primary`
+    /// traces it: anti-aliasing's extra samples (the tile's lists only skip
+    /// what cannot be met). In a tracked frame each lane's cells and segments
+    /// are noted, those of earlier calls dropped.
+    pub(crate) fn camera_samples(&self, at: &[(f32, f32)]) -> [Vec3; LANES] {
+        assert!(at.len() <= LANES, "at most {LANES} samples at a time");
+        self.notes.fresh();
+        let mut first = Bounce8 {
+            origin: V8::ZERO,
+            d: V8::ZERO,
+            depth: 0,
+            weight: [1.0; LANES],
+            free: 0,
+            from: [-1.0; LANES],
+        };
+        let mut live = 0u8;
+        for (i, &(x, y)) in at.iter().enumerate() {
+            let ray = self.cam.ray(x, y);
+            first.origin.set(i, ray.origin);
+            first.d.set(i, ray.dir);
+            live |= 1 << i;
+        }
+        let b = self.bounces();
+        let c = match Build::detect() {
+            Build::Portable => bounce_copy(Portable, b, &first, live, None),
+            #[cfg(target_arch = "x86_64")]
+            Build::Avx2(s) => bounce_copy(s, b, &first, live, None),
+        };
+        std::array::from_fn(|i| Vec3::new(c.x[i], c.y[i], c.z[i]))
+    }
+
+    /// The scene's queries over the lanes.
+    #[inline(always)]
+    fn scan(&self) -> Scan<'_, 'p> {
+        Scan { p: self.p }
+    }
+
+    /// The lights of what the lanes meet.
+    #[inline(always)]
+    fn lights(&self) -> Lights<'_, 'p> {
+        Lights {
+            scan: self.scan(),
+            notes: &self.notes,
+        }
+    }
+
+    /// The bounces of the lanes' rays.
+    #[inline(always)]
+    fn bounces(&self) -> Bounces<'_, 'p> {
+        Bounces {
+            lights: self.lights(),
+            bound: self.bound,
+        }
     }
 
     /// Traces pixels `x0..x0 + 8` of row `y` at their centres into `out` (8 RGBA
@@ -239,7 +190,7 @@ impl Packet<'_, '_> {
         y: u32,
         out: &mut [u8],
     ) -> u8 {
-        self.fresh();
+        self.notes.fresh();
         Build::detect().run(FloorKernel {
             pk: self,
             floor,
@@ -295,11 +246,12 @@ impl Packet<'_, '_> {
             };
             (0, none)
         } else {
-            self.nearest_of(s, others, &d, t)
+            self.scan().nearest_of(s, others, (c.origin, &d), t)
         };
         let on_floor = !front;
         // Camera rays: free (`Record::segment`'s `free`).
-        self.note_lanes(s, (on_floor, 0xFF), (&splat3(s, c.origin), &d), t);
+        self.notes
+            .note(s, (on_floor, 0xFF), (&splat3(s, c.origin), &d), t);
         // closest_among: the normal faces the ray (`denom` is normal.dot(dir)).
         let back = S::lt(k(0.0), denom);
         let nn = L3 {
@@ -322,7 +274,7 @@ impl Packet<'_, '_> {
             self.shade_lanes(s, floor, (x0, y), on_floor, &hit)
         };
         if front != 0 {
-            let ray = rays::Bounce {
+            let ray = Bounce {
                 origin: splat3(s, c.origin),
                 d,
                 depth: 0,
@@ -330,12 +282,82 @@ impl Packet<'_, '_> {
                 free: 0,
                 from: k(-1.0),
             };
-            let cradle = self.bounce(s, &ray, front, Some(found));
-            color = vec::select3::<S>(s.mask(front), &cradle, &color);
+            let cradle = self.bounces().trace(s, &ray, front, Some(found));
+            color = select3::<S>(s.mask(front), &cradle, &color);
         }
         let color = store3::<S>(&color);
         self.colors.set([color.x, color.y, color.z]);
         (0xFF, color)
+    }
+
+    /// `shade` at depth 0 of the floor lanes `on` (a bit each) at `hit`: what
+    /// [`Lights::local`] gives, blended with what the mirror rays bring.
+    #[inline(always)]
+    fn shade_lanes<S: Simd>(
+        &self,
+        s: S,
+        floor: &Floor<'_>,
+        (x0, y): (u32, u32),
+        on: u8,
+        hit: &Surface<S::F>,
+    ) -> L3<S::F> {
+        // Camera rays met the floor: their shadow rays are free.
+        let mut color = self.lights().local(s, Met::Floor(floor), (on, 0xFF), hit);
+        let r = floor.material.reflective;
+        // weight * r * bound, at weight 1.
+        if r > 0.0 && 0 < self.p.scene.max_depth && r * self.bound >= BAILOUT {
+            let refl = self.mirrors(s, floor, (x0, y, on), hit, r);
+            // color = color * (1.0 - r) + reflected * r
+            let k = |v: f32| s.splat(v);
+            color = color.scale(k(1.0 - r)).add(&refl.scale(k(r)));
+        }
+        color
+    }
+
+    /// Per lane, the radiance the floor's mirror rays bring back (`reflect` at
+    /// depth 1 with weight `r`): the nearest hit among the tile's mirror
+    /// candidates, found over the lanes, then traced on over the lanes
+    /// ([`Bounces::trace`]). A packet whose lanes all meet nothing takes the
+    /// background at once.
+    #[inline(always)]
+    fn mirrors<S: Simd>(
+        &self,
+        s: S,
+        floor: &Floor<'_>,
+        (x0, y, on_floor): (u32, u32, u8),
+        Surface { d, start, nn, .. }: &Surface<S::F>,
+        r: f32,
+    ) -> L3<S::F> {
+        // dir - 2.0 * dir.dot(n) * n
+        let dir = d.sub(&nn.scale(s.splat(2.0) * d.dot(nn)));
+        // The nearest of the tile's mirror candidates per lane (not the floor
+        // itself, `Prepared::closest_among`); lanes that meet none see the
+        // background.
+        let mut missed = 0u8;
+        let mut found = None;
+        if let Some(list) = self.tiles.mirror_at(floor.object, x0, y) {
+            let f = self
+                .scan()
+                .nearest_in(s, (list, floor.object), (start, &dir), on_floor);
+            missed = f.missed;
+            found = Some(f);
+        }
+        if on_floor & !missed == 0 && !self.notes.tracked() {
+            // Every lane sees the background, and there is nothing to note.
+            return splat3(s, self.p.scene.background);
+        }
+        // `reflect` through the tile's list: the object found above; without
+        // one, `closest` (the nearest of all, the same hit).
+        let mirror = Bounce {
+            origin: *start,
+            d: dir,
+            depth: 1,
+            weight: s.splat(r),
+            // Mirror rays of camera rays off the floor: free.
+            free: 0xFF,
+            from: s.splat(floor.object as f32),
+        };
+        self.bounces().trace(s, &mirror, on_floor, found)
     }
 }
 
@@ -357,8 +379,8 @@ fn write(out: &mut [u8], done: u8, px: [u32; LANES]) {
 
 /// [`Packet::floor`]'s lanes as a lane kernel: trace them, and write the
 /// lanes done as RGBA into `out`.
-struct FloorKernel<'k, 'p, 'a> {
-    pk: &'k Packet<'p, 'a>,
+struct FloorKernel<'k, 'a, 'p> {
+    pk: &'k Packet<'a, 'p>,
     floor: &'k Floor<'k>,
     others: &'k [usize],
     at: (u32, u32),

@@ -104,11 +104,11 @@ fn retrace_dirty(
                 let span = &mut row[x * 4..end * 4];
                 let before: [u8; 4 * LANES] = span.try_into().expect("a run of LANES");
                 let done = pk.run(x as u32, y, span);
-                let marks = pk.marks();
+                let marks = pk.notes.marks();
                 for k in (x..end).filter(|k| done & (1 << (k - x)) != 0) {
                     rm.retrace(k, |segs| {
                         if track {
-                            pk.lane_segs(k - x, segs);
+                            pk.notes.lane_segs(k - x, segs);
                         }
                         (marks[k - x], ())
                     });
@@ -171,7 +171,7 @@ fn eye_rays(
         *a = (k as f32 + dx, y as f32 + dy);
     }
     let colors = pk.camera_samples(&at[..ks.len()]);
-    let marks = pk.marks();
+    let marks = pk.notes.marks();
     for (i, &k) in ks.iter().enumerate() {
         // `pixel`: the sum from zero over the one sample, divided by 1.
         let c = (Vec3::ZERO + colors[i]) / 1.0;
@@ -180,7 +180,7 @@ fn eye_rays(
         px.copy_from_slice(&[srgb8(c.x), srgb8(c.y), srgb8(c.z), 255]);
         rm.retrace(k, |segs| {
             if track {
-                pk.lane_segs(i, segs);
+                pk.notes.lane_segs(i, segs);
             }
             (marks[i], ())
         });

@@ -69,7 +69,7 @@ pub(crate) fn supersampled(
             len += 1;
         }
         let colors = pk.camera_samples(&at[..len]);
-        let marks = pk.marks();
+        let marks = pk.notes.marks();
         for (i, &x) in batch[..len].iter().enumerate() {
             if open.is_none_or(|o| o.0 != x) {
                 if let Some(done) = open.take() {
@@ -81,7 +81,7 @@ pub(crate) fn supersampled(
                 o.1 += colors[i];
                 o.2 |= marks[i];
             }
-            pk.lane_segs(i, segs);
+            pk.notes.lane_segs(i, segs);
         }
     }
     if let Some(done) = open {

@@ -1,10 +1,10 @@
 //! The packet's rays past the floor's own shading, over the lanes: the eye's
 //! rays that meet the cradle before the floor, and the floor's mirror rays.
 //! Level by level (one bounce each) instead of `shade`'s recursion: each
-//! level finds every lane's nearest hit as `closest` does (`nearest`; a
+//! level finds every lane's nearest hit as `closest` does (`Scan::nearest_all`; a
 //! plane's own mirror rays skip it, `Bounce::from`), groups the lanes by
 //! the object met, shades each group's lights and shadows over the lanes
-//! (`local_lanes`) and makes the mirror rays of the next level for the lanes
+//! (`Lights::local`) and makes the mirror rays of the next level for the lanes
 //! that reflect. Then the levels are blended from the deepest up,
 //! `color * (1 - r) + reflected * r` per lane, as the recursion returns.
 //!
@@ -20,11 +20,12 @@
     reason = "the lane code is inlined into each entry point, so the AVX2 one compiles it for AVX2"
 )]
 
+use super::LANES;
 use super::hits::{hit_normal, normal_at};
+use super::lights::Lights;
 use super::nearest::Found;
 use super::rays::{Bounce, Bounce8, Met, leaving};
-use super::vec::select3;
-use super::{F8, L3, LANES, Packet, Surface, V8, load3, splat3, store3};
+use super::vec::{F8, L3, Surface, V8, load3, select3, splat3, store3};
 use crate::geometry::Ray;
 use crate::geometry::{Hit, SURFACE_OFFSET};
 use crate::material::BAILOUT;
@@ -42,46 +43,54 @@ const LEVELS: usize = 17;
 /// was met, and the lanes that reflect (bits).
 type Level<F> = (L3<F>, F, u8);
 
-/// [`Packet::bounce_lanes`] of the rays `first` in lane build `s`, through
+/// The bounces of the lanes' rays: the lights of what they meet, and the
+/// radiance bound that ends a path whose weight cannot matter any more.
+#[derive(Clone, Copy)]
+pub(super) struct Bounces<'a, 'p> {
+    pub(super) lights: Lights<'a, 'p>,
+    pub(super) bound: f32,
+}
+
+/// [`Bounces::lanes`] of the rays `first` in lane build `s`, through
 /// the build's one compiled copy: not inlined into each caller (the floor's
 /// kernel and its mirrors), which made the crate slow to compile; the AVX2
 /// copy is compiled for AVX2. Lane values cross the call as arrays.
 #[inline(never)]
 pub(super) fn bounce_copy<S: Simd>(
     s: S,
-    pk: &Packet<'_, '_>,
+    bounces: Bounces<'_, '_>,
     first: &Bounce8,
     live: u8,
     found: Option<Found<F8>>,
 ) -> V8 {
     s.enter(BounceKernel {
-        pk,
+        bounces,
         first,
         live,
         found,
     })
 }
 
-/// [`Packet::bounce_lanes`] as a lane kernel.
-struct BounceKernel<'k, 'p, 'a> {
-    pk: &'k Packet<'p, 'a>,
+/// [`Bounces::lanes`] as a lane kernel.
+struct BounceKernel<'k, 'p> {
+    bounces: Bounces<'k, 'p>,
     first: &'k Bounce8,
     live: u8,
     found: Option<Found<F8>>,
 }
 
-impl Kernel for BounceKernel<'_, '_, '_> {
+impl Kernel for BounceKernel<'_, '_> {
     type Output = V8;
     #[inline(always)]
     fn run<S: Simd>(self, s: S) -> V8 {
-        self.pk.bounce_arrays(s, self.first, self.live, self.found)
+        self.bounces.arrays(s, self.first, self.live, self.found)
     }
 }
 
-impl Packet<'_, '_> {
-    /// [`Self::bounce_lanes`] through build `S`'s own copy.
+impl Bounces<'_, '_> {
+    /// [`Self::lanes`] through build `S`'s own copy.
     #[inline(always)]
-    pub(super) fn bounce<S: Simd>(
+    pub(super) fn trace<S: Simd>(
         &self,
         s: S,
         first: &Bounce<S::F>,
@@ -101,12 +110,12 @@ impl Packet<'_, '_> {
         if let Some(f) = found {
             known = Some(f.store::<S>());
         }
-        load3(s, &bounce_copy(s, self, &arrays, live, known))
+        load3(s, &bounce_copy(s, *self, &arrays, live, known))
     }
 
-    /// [`Self::bounce_lanes`] from and to arrays.
+    /// [`Self::lanes`] from and to arrays.
     #[inline(always)]
-    fn bounce_arrays<S: Simd>(&self, s: S, b: &Bounce8, live: u8, found: Option<Found<F8>>) -> V8 {
+    fn arrays<S: Simd>(&self, s: S, b: &Bounce8, live: u8, found: Option<Found<F8>>) -> V8 {
         let first = Bounce {
             origin: load3(s, &b.origin),
             d: load3(s, &b.d),
@@ -119,7 +128,7 @@ impl Packet<'_, '_> {
         if let Some(f) = found {
             known = Some(f.load(s));
         }
-        store3::<S>(&self.bounce_lanes(s, first, live, known))
+        store3::<S>(&self.lanes(s, first, live, known))
     }
 
     /// Per lane, the radiance of the rays `first` of the lanes of `live`
@@ -127,7 +136,7 @@ impl Packet<'_, '_> {
     /// nearest hits where already known, the lanes that meet nothing and the
     /// object per lane (as `f32`).
     #[inline(always)]
-    fn bounce_lanes<S: Simd>(
+    fn lanes<S: Simd>(
         &self,
         s: S,
         first: Bounce<S::F>,
@@ -142,7 +151,7 @@ impl Packet<'_, '_> {
         loop {
             let f = match found.take() {
                 Some(f) => f,
-                None => self.nearest_all(s, &ray, live),
+                None => self.lights.scan.nearest_all(s, &ray, live),
             };
             let (level, next) = self.level(s, &ray, (live & !f.missed, live & f.missed), &f);
             levels[n] = Some(level);
@@ -175,7 +184,7 @@ impl Packet<'_, '_> {
         (hitting, missed): (u8, u8),
         found: &Found<S::F>,
     ) -> (Level<S::F>, Bounce<S::F>) {
-        let p = self.p;
+        let p = self.lights.scan.p;
         let (origin, dir, which) = (
             store3::<S>(&ray.origin),
             store3::<S>(&ray.d),
@@ -189,7 +198,7 @@ impl Packet<'_, '_> {
         // rays off a plane.
         let free = if ray.depth == 0 { 0xFF } else { ray.free };
         // `shade` of no hit notes the ray to infinity.
-        self.note_lanes(
+        self.lights.notes.note(
             s,
             (missed, free),
             (&ray.origin, &ray.d),
@@ -231,7 +240,9 @@ impl Packet<'_, '_> {
             let outside = !S::bits(inside);
             let lost = group & !S::bits(S::lt(t, s.splat(f32::INFINITY)));
             // `shade` notes its ray up to the hit.
-            self.note_lanes(s, (group & !lost, free), (&ray.origin, &ray.d), t);
+            self.lights
+                .notes
+                .note(s, (group & !lost, free), (&ray.origin, &ray.d), t);
             for i in (0..LANES).filter(|i| lost >> i & 1 != 0) {
                 // Not met by the hit test after all: the scalar path.
                 self.lane_scalar::<S>((i, free), (ray, &lane_ray(i)), None, &mut scalar);
@@ -259,7 +270,7 @@ impl Packet<'_, '_> {
                 start,
                 nn,
             };
-            let here = self.local_lanes(s, met, (group, from_eye), &hit);
+            let here = self.lights.local(s, met, (group, from_eye), &hit);
             color = select3::<S>(s.mask(group), &here, &color);
             let r = object.material.reflective;
             if r > 0.0 && ray.depth < p.scene.max_depth {
@@ -298,7 +309,7 @@ impl Packet<'_, '_> {
         ray: &Bounce<S::F>,
         found: &Found<S::F>,
     ) -> (S::F, L3<S::F>) {
-        let g = self.p.geom(k);
+        let g = self.lights.scan.p.geom(k);
         match found.at {
             Some(at) => (at.0, normal_at(s, g, (&ray.origin, &ray.d), at)),
             None => hit_normal(s, g, &ray.origin, &ray.d),
@@ -332,8 +343,8 @@ impl Packet<'_, '_> {
         hit: Option<Hit>,
         (depth, weight): (u32, f32),
     ) -> Vec3 {
-        let (p, b) = (self.p, self.bound);
-        self.in_lane(i, |motion| {
+        let (p, b) = (self.lights.scan.p, self.bound);
+        self.lights.notes.in_lane(i, |motion| {
             let hit = hit.or_else(|| p.closest_from(from, r, f32::INFINITY));
             shade_from(p, r, hit, (depth, weight), b, (motion, free >> i & 1 != 0))
         })

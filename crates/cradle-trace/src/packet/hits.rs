@@ -3,8 +3,7 @@
 //! the scalar order (`Aabb::hit`, `hit_sphere`, `Cylinder::hit`, `hit_plane`;
 //! glam's dot is `(x*x' + y*y') + z*z'`, its `min` and `max` are `a < b ? a :
 //! b` and `a > b ? a : b`), so every lane's answer is the scalar one. The
-//! queries that use them (nearest hits, shadow rays) are in `nearest`,
-//! `occlusion`, `objects` and `lanes`.
+//! queries that use them (nearest hits, shadow rays) are `Scan`'s.
 
 #![expect(
     clippy::inline_always,

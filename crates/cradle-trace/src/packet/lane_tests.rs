@@ -3,11 +3,14 @@
 //! (zero direction components, infinite inverses), from inside, grazing, along
 //! a cylinder's axis (caps only) and across it.
 
+use super::LANES;
 use super::hits::{blocks8, box8};
+use super::lights::base_lanes;
 use super::lookup::lookup;
-use super::{F8, LANES, V8, load3};
+use super::vec::{F8, L3, V8, load3, store3};
 use crate::geometry::Geom;
 use crate::geometry::{Aabb, Cylinder, Ray, hit_sphere};
+use crate::scene::Material;
 use crate::simd::{Portable, Simd};
 use glam::Vec3;
 
@@ -201,31 +204,24 @@ fn lane_lookups_find_the_scalar_cells() {
     );
 }
 
-/// The checker colours of eight floor points by `surface_lanes` in `s`.
-fn checker_lanes<S: Simd>(s: S, floor: &super::Floor<'_>, x: &F8, z: &F8) -> V8 {
-    let point = super::L3 {
+/// The checker colours of eight floor points by `base_lanes` in `s`.
+fn checker_lanes<S: Simd>(s: S, material: &Material, x: &F8, z: &F8) -> V8 {
+    let point = L3 {
         x: s.load(x),
         y: s.splat(0.0),
         z: s.load(z),
     };
-    super::store3::<S>(&super::Packet::surface_lanes(s, floor.material, &point))
+    store3::<S>(&base_lanes(s, material, &point))
 }
 
 #[test]
 fn checker_lanes_pick_the_scalar_colours() {
     use crate::material::base_color;
-    use crate::scene::Material;
     let material = Material {
         color: Vec3::new(0.32, 0.22, 0.14),
         specular: None,
         reflective: 0.0,
         checker: Some((Vec3::new(0.26, 0.17, 0.1), 0.05)),
-    };
-    let floor = super::Floor {
-        object: 0,
-        normal: Vec3::Y,
-        material: &material,
-        num: 0.0,
     };
     // Cell borders (exact multiples of the size and their neighbours), signed
     // zeros, the edge of the exact range (2^22 cells) and beyond it, huge
@@ -258,7 +254,7 @@ fn checker_lanes_pick_the_scalar_colours() {
     for round in 0..2000 {
         let x: F8 = std::array::from_fn(|i| pick(round, i));
         let z: F8 = std::array::from_fn(|i| pick(round + 1, i + 3));
-        for got in each_build!(|s| checker_lanes(s, &floor, &x, &z)) {
+        for got in each_build!(|s| checker_lanes(s, &material, &x, &z)) {
             for i in 0..LANES {
                 let want = base_color(&material, Vec3::new(x[i], 0.0, z[i]));
                 assert_eq!(got.lane(i), want, "at x {} z {}", x[i], z[i]);
@@ -325,7 +321,6 @@ fn lane_hits_and_normals_are_the_scalar_ones() {
 /// `hit_normal`'s `t` and normal.
 fn hit_lanes<S: Simd>(s: S, g: &Geom, o: &V8, d: &V8) -> (F8, F8, V8, F8, V8) {
     use super::hits::{hit_normal, hit_part, normal_at};
-    use super::store3;
     let (o, d) = (load3(s, o), load3(s, d));
     let (t, part) = hit_part(s, g, (&o, &d), 0xFF);
     let n = normal_at(s, g, (&o, &d), (t, part));

@@ -2,7 +2,7 @@
 //! once in lane build `S`: where each lane's start projects from the light onto
 //! the plane and which cell of the footprint grid holds it, with the scalar
 //! `Footprints::lookup`'s operations in its order, so every lane's answer is
-//! the scalar one (`occlusion` then tests the objects the cell lists).
+//! the scalar one (`Scan::occluded_lanes` then tests the objects the cell lists).
 
 use super::vec::splat3;
 use super::{L3, LANES};

@@ -1,20 +1,17 @@
-//! The nearest hit of each lane's ray in a bounce past the eye's first hit,
-//! as `Prepared::closest_from` finds it: the planes (but the one a lane's ray
-//! leaves), then the bounded objects in runs of up to eight behind their chunk's
-//! hull, or, in a large scene, each lane through the hierarchy.
+//! The nearest hit so far of each lane's ray, as a scan over the objects
+//! keeps it ([`Nearest`]: a hit taken only where nearer, so the first of
+//! equally near ones, as `Prepared::closest_among`), and what the scan found
+//! ([`Found`]), which the shading takes on without testing the object again.
 
 #![expect(
     clippy::inline_always,
     reason = "the lane code is inlined into each entry point, so the AVX2 one compiles it for AVX2"
 )]
 
-use super::hits::{box8, hit_part, recip};
-use super::rays::{Bounce, leaving};
-use super::{F8, L3, LANES, Packet, store3};
+use super::hits::hit_part;
+use super::vec::{F8, L3};
 use crate::geometry::Geom;
-use crate::geometry::Ray;
 use crate::simd::Simd;
-use crate::tuning::SCAN_AT_MOST;
 
 /// The nearest hits of a level's lanes: the lanes that meet nothing (bits),
 /// the object each other lane meets (its index as `f32`), and where the scan
@@ -111,70 +108,5 @@ impl<F: Copy> Nearest<F> {
             which: self.which,
             at: Some((self.best, self.part)),
         }
-    }
-}
-
-impl Packet<'_, '_> {
-    /// Per lane of `live`, the nearest hit of its ray as `closest_from` finds
-    /// it (the planes but the one the lane's ray leaves, `Bounce::from`, then
-    /// inside the box around them the bounded objects in
-    /// order, each box tested with the nearest hit so far as its limit, a hit
-    /// taken only where nearer), as [`Found`].
-    /// Beyond [`SCAN_AT_MOST`] bounded objects each lane walks the hierarchy
-    /// instead (`Prepared::closest_from`, the same hit; `Found::at` then
-    /// unknown).
-    #[inline(always)]
-    pub(super) fn nearest_all<S: Simd>(&self, s: S, ray: &Bounce<S::F>, live: u8) -> Found<S::F> {
-        let p = self.p;
-        if p.bounded.len() > SCAN_AT_MOST {
-            let (origin, dir) = (store3::<S>(&ray.origin), store3::<S>(&ray.d));
-            let (mut missed, mut which) = (!live, [0.0; LANES]);
-            for i in (0..LANES).filter(|i| live >> i & 1 != 0) {
-                let r = Ray {
-                    origin: origin.lane(i),
-                    dir: dir.lane(i),
-                };
-                match p.closest_from(leaving::<S>(ray.from, i), &r, f32::INFINITY) {
-                    Some(h) => which[i] = h.object as f32,
-                    None => missed |= 1 << i,
-                }
-            }
-            return Found {
-                missed,
-                which: s.load(&which),
-                at: None,
-            };
-        }
-        let inf = s.splat(f32::INFINITY);
-        let mut near = Nearest::before(s, inf);
-        for &k in p.planes() {
-            let t = self.plane_hits(s, k, &ray.origin, &ray.d);
-            // Not the plane the lane's ray leaves.
-            let own = S::le(ray.from, s.splat(k as f32)) & S::le(s.splat(k as f32), ray.from);
-            near.offer(s, !own, (t, s.splat(0.0)), k);
-        }
-        let inv = recip(s, &ray.d);
-        let within = live & S::bits(box8(s, &p.group, &ray.origin, &inv, inf));
-        if within != 0 {
-            let within = s.mask(within);
-            // A run of up to eight objects at a time behind its chunk's hull:
-            // lanes that miss it before their nearest hit so far miss each of
-            // the run's objects (`Chunk::hull`).
-            for chunk in p.wide.chunks() {
-                let hull = within & box8(s, chunk.hull(), &ray.origin, &inv, near.best);
-                if S::bits(hull) == 0 {
-                    continue;
-                }
-                for &k in chunk.items() {
-                    let k = k as usize;
-                    let inside = hull & box8(s, &p.boxes[k], &ray.origin, &inv, near.best);
-                    if S::bits(inside) == 0 {
-                        continue;
-                    }
-                    near.offer_object(s, inside, (p.geom(k), k), (&ray.origin, &ray.d));
-                }
-            }
-        }
-        near.found(!S::bits(S::lt(near.best, inf)))
     }
 }

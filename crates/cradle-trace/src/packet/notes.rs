@@ -1,6 +1,7 @@
-//! The motion record of a tracked frame's packets: each lane notes the cells its
-//! rays pass through and their segments inside the motion box, exactly what the
-//! scalar path's `Motion::segment` notes for the lane's pixel. The box's slabs
+//! The motion record of a tracked frame's packets ([`LaneNotes`]): each lane
+//! notes the cells its rays pass through and their segments inside the motion
+//! box, exactly what the scalar path's `Motion::segment` notes for the lane's
+//! pixel; an untracked frame's notes keep nothing. The box's slabs
 //! are cut over the lanes (the divisions and products of `MotionGrid::clip`, the
 //! same IEEE operations per lane); the rest of the clip, and the cells, per lane.
 
@@ -9,20 +10,90 @@
     reason = "the lane code is inlined into each entry point, so the AVX2 one compiles it for AVX2"
 )]
 
+use super::LANES;
+use super::spare;
 use super::vec::{L3, store3};
-use super::{LANES, Packet};
 use crate::geometry::Ray;
-use crate::motion::MotionGrid;
+use crate::motion::{Cells, Motion, MotionGrid, Seg};
 use crate::simd::Simd;
 use glam::Vec3;
+use std::cell::{Cell, RefCell};
 
-impl Packet<'_, '_> {
+/// What each lane of a packet's rays passed through, in a tracked frame.
+pub(crate) struct LaneNotes {
+    /// The motion grid of a tracked frame (`None`: nothing is noted).
+    motion: Option<MotionGrid>,
+    /// The cells each lane's rays passed through.
+    marks: Cell<[Cells; LANES]>,
+    /// The segments of each lane's rays inside the motion box, in the order
+    /// traced.
+    segs: RefCell<[Vec<Seg>; LANES]>,
+}
+
+impl Drop for LaneNotes {
+    /// Gives the lanes' segment buffers back to the thread's spares.
+    fn drop(&mut self) {
+        spare::give(std::mem::take(self.segs.get_mut()));
+    }
+}
+
+impl LaneNotes {
+    /// Notes for a frame tracked on `motion` (`None`: untracked), in the
+    /// thread's spare segment buffers.
+    pub(crate) fn new(motion: Option<MotionGrid>) -> Self {
+        Self {
+            motion,
+            marks: Cell::new([0; LANES]),
+            segs: RefCell::new(spare::take(motion.is_some())),
+        }
+    }
+
+    /// Whether the frame is tracked.
+    #[inline(always)]
+    pub(super) fn tracked(&self) -> bool {
+        self.motion.is_some()
+    }
+
+    /// Forgets the last packet's cells and segments (in a tracked frame).
+    pub(super) fn fresh(&self) {
+        if self.motion.is_some() {
+            self.marks.set([0; LANES]);
+            self.segs.borrow_mut().iter_mut().for_each(Vec::clear);
+        }
+    }
+
+    /// The cells each lane's rays passed through in the last packet (in a
+    /// tracked frame).
+    pub(crate) fn marks(&self) -> [Cells; LANES] {
+        self.marks.get()
+    }
+
+    /// Appends the segments lane `i` noted in the last packet to `out`.
+    pub(crate) fn lane_segs(&self, i: usize, out: &mut Vec<Seg>) {
+        out.extend_from_slice(&self.segs.borrow()[i]);
+    }
+
+    /// What `f` returns, given a `Motion` for lane `i` (lent the lane's
+    /// segments, to append to) whose cells then go to the lane's in a tracked
+    /// frame: the scalar path's tracing of one lane.
+    pub(super) fn in_lane(&self, i: usize, f: impl FnOnce(&mut Motion) -> Vec3) -> Vec3 {
+        let lent = std::mem::take(&mut self.segs.borrow_mut()[i]);
+        let mut motion = Motion::with(self.motion, lent);
+        let c = f(&mut motion);
+        if self.motion.is_some() {
+            let m = &self.marks.as_array_of_cells()[i];
+            m.set(m.get() | motion.mask);
+        }
+        self.segs.borrow_mut()[i] = motion.segs;
+        c
+    }
+
     /// In a tracked frame, notes for each lane of `on` the segment of its ray
     /// from `origin` along `dir` up to `t`: its cells (but not in the lanes of
     /// `free`, as `Record::segment` takes it), and its part in the motion box (lane by
     /// lane, in order).
     #[inline(always)]
-    pub(super) fn note_lanes<S: Simd>(
+    pub(super) fn note<S: Simd>(
         &self,
         s: S,
         (on, free): (u8, u8),

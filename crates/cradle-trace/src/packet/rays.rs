@@ -1,17 +1,20 @@
 //! The packet's rays between bounces: where each lane's ray starts and goes
 //! ([`Bounce`], and as arrays [`Bounce8`] to cross a call), the plane it
-//! leaves, and what a group of lanes met ([`Met`]). Below the nearest-hit
-//! scan (`nearest`), the shading of lanes (`lanes`) and the bounces that
-//! drive both (`bounce`).
+//! leaves, the floor the eye's rays meet ([`Floor`]) and what a group of lanes
+//! met ([`Met`]). Below the scene's queries (`scan`), the lights (`lights`)
+//! and the bounces that drive both (`bounce`).
 
 #![expect(
     clippy::inline_always,
     reason = "the lane code is inlined into each entry point, so the AVX2 one compiles it for AVX2"
 )]
 
-use super::{F8, Floor, L3, V8};
-use crate::scene::Material;
+use super::vec::{F8, L3, V8};
+use crate::camera::CameraRays;
+use crate::prepared::Prepared;
+use crate::scene::{Material, Shape};
 use crate::simd::Simd;
+use glam::Vec3;
 
 /// The lanes' rays: from `origin` along `d`, bounce `depth`, path weight
 /// `weight` per lane (the eye's rays: 0 and 1).
@@ -37,6 +40,33 @@ pub(super) struct Bounce8 {
     pub(super) weight: F8,
     pub(super) free: u8,
     pub(super) from: F8,
+}
+
+/// The floor plane a packet shades: its object, point, normal and material.
+#[derive(Clone, Copy)]
+pub(crate) struct Floor<'a> {
+    pub(super) object: usize,
+    pub(super) normal: Vec3,
+    pub(super) material: &'a Material,
+    /// `(point - eye).dot(normal)`: the numerator of every primary ray's hit.
+    pub(super) num: f32,
+}
+
+impl<'a> Floor<'a> {
+    /// Plane `object` (the only thing a packet's rays can hit).
+    pub(crate) fn of(p: &'a Prepared<'_>, cam: &CameraRays, object: usize) -> Option<Self> {
+        let o = &p.scene.objects[object];
+        let Shape::Plane { point, normal } = o.shape else {
+            return None;
+        };
+        Some(Self {
+            object,
+            normal,
+            material: &o.material,
+            // hit_plane: (point - ray.origin).dot(normal), the eye for every lane.
+            num: (point - cam.origin).dot(normal),
+        })
+    }
 }
 
 /// What the lanes to shade met: the packet's floor seen from the eye (depth

@@ -7,10 +7,68 @@
     reason = "the lane code is inlined into each entry point, so the AVX2 one compiles it for AVX2"
 )]
 
-use super::V8;
+use super::LANES;
 use crate::simd::Simd;
 use glam::Vec3;
 use std::ops::{Add, Div, Mul, Neg, Sub};
+
+pub(super) type F8 = [f32; LANES];
+
+/// Eight vectors, one per lane.
+#[derive(Clone, Copy)]
+pub(super) struct V8 {
+    pub(super) x: F8,
+    pub(super) y: F8,
+    pub(super) z: F8,
+}
+
+/// The lanes `f(0)..f(7)`. A plain loop, which inlines and vectorizes;
+/// `std::array::from_fn` calls its closure through a wrapper that stays a call.
+#[inline(always)]
+pub(super) fn f8(f: impl FnMut(usize) -> f32) -> F8 {
+    lanes(f)
+}
+
+/// [`f8`] for any lane type.
+#[inline(always)]
+pub(super) fn lanes<T: Copy + Default>(mut f: impl FnMut(usize) -> T) -> [T; LANES] {
+    let mut out = [T::default(); LANES];
+    for (i, o) in out.iter_mut().enumerate() {
+        *o = f(i);
+    }
+    out
+}
+
+/// The lanes of `among` (bits) whose `keys` equal `key`. (A plain loop, no
+/// closure: it inlines into the AVX2 build.)
+#[inline(always)]
+pub(super) fn lanes_with<T: PartialEq>(keys: &[T; LANES], key: &T, among: u8) -> u8 {
+    let mut bits = 0u8;
+    for (i, k) in keys.iter().enumerate() {
+        if k == key {
+            bits |= 1 << i;
+        }
+    }
+    bits & among
+}
+
+impl V8 {
+    pub(super) const ZERO: V8 = V8 {
+        x: [0.0; LANES],
+        y: [0.0; LANES],
+        z: [0.0; LANES],
+    };
+
+    #[inline(always)]
+    pub(super) fn lane(&self, i: usize) -> Vec3 {
+        Vec3::new(self.x[i], self.y[i], self.z[i])
+    }
+
+    /// Sets lane `i` to `v`.
+    pub(super) fn set(&mut self, i: usize, v: Vec3) {
+        (self.x[i], self.y[i], self.z[i]) = (v.x, v.y, v.z);
+    }
+}
 
 /// Three lane values of build `S`: a vector per lane.
 #[derive(Clone, Copy)]

@@ -1,7 +1,7 @@
 //! The Phong highlight's powers over the lanes (portable and AVX2 builds)
 //! against the scalar ones, and where the highlight is cut.
 
-use super::super::F8;
+use super::super::vec::F8;
 use super::Lcg;
 use crate::simd::{Portable, Simd};
 /// `x^n` by `powi` over lanes of build `s`.

@@ -4,8 +4,9 @@
 //! before the caps (`blocks8`). Wanted lanes must still answer as the scalar
 //! `Cylinder::hit` does, whatever the other lanes hold.
 
+use super::super::LANES;
 use super::super::hits::{blocks8, hit_part};
-use super::super::{LANES, load3};
+use super::super::vec::{V8, load3};
 use super::{Lcg, lanes_of, rays};
 use crate::geometry::Cylinder;
 use crate::geometry::Geom;
@@ -17,7 +18,7 @@ use glam::Vec3;
 fn wanted<S: Simd>(
     s: S,
     g: &Geom,
-    (o, d): (&super::V8, &super::V8),
+    (o, d): (&V8, &V8),
     (want, t_max): (u8, f32),
 ) -> ([u32; LANES], u8) {
     let (o, d) = (load3(s, o), load3(s, d));
