@@ -67,48 +67,29 @@ pub fn setup_text(config: &Config) -> Result<String, ron::Error> {
 
 /// Writes `config` as a new asset `newtons-cradle-setup-STAMP.ron` in `dir`
 /// (`-2`, `-3`, .. when the name is taken): the text goes to a hidden
-/// temporary file first, then is linked to its name, which fails rather than
-/// replace a file. Returns the path written.
+/// temporary file first, then takes its name only where no file has it
+/// (`persist_noclobber`). Returns the path written.
 ///
 /// # Errors
 /// The folder cannot be written.
 pub fn save_setup(config: &Config, dir: &Path, stamp: &str) -> std::io::Result<PathBuf> {
     let text = setup_text(config).map_err(std::io::Error::other)?;
-    let tmp = tempfile_in(dir)?;
-    let result = (|| {
-        std::fs::File::create(&tmp)?.write_all(text.as_bytes())?;
-        for k in 1u32.. {
-            let name =
-                super::screenshot::numbered(&format!("newtons-cradle-setup-{stamp}"), k, "ron");
-            let path = dir.join(name);
-            match std::fs::hard_link(&tmp, &path) {
-                Ok(()) => return Ok(path),
-                Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {}
-                Err(e) => return Err(e),
-            }
+    // Dropped unnamed (any error), the temporary file goes.
+    let mut tmp = tempfile::Builder::new()
+        .prefix(".newtons-cradle-setup-")
+        .suffix(".part")
+        .tempfile_in(dir)?;
+    tmp.write_all(text.as_bytes())?;
+    for k in 1u32.. {
+        let name = super::screenshot::numbered(&format!("newtons-cradle-setup-{stamp}"), k, "ron");
+        let path = dir.join(name);
+        match tmp.persist_noclobber(&path) {
+            Ok(_) => return Ok(path),
+            Err(e) if e.error.kind() == std::io::ErrorKind::AlreadyExists => tmp = e.file,
+            Err(e) => return Err(e.error),
         }
-        unreachable!("some numbered name is free")
-    })();
-    // The temporary name goes whether the link was made or not.
-    let _ = std::fs::remove_file(&tmp);
-    result
-}
-
-/// A hidden temporary name in `dir` that no other save uses.
-fn tempfile_in(dir: &Path) -> std::io::Result<PathBuf> {
-    static NEXT: std::sync::atomic::AtomicU32 = std::sync::atomic::AtomicU32::new(0);
-    let n = NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-    let path = dir.join(format!(
-        ".newtons-cradle-setup-{}-{n}.part",
-        std::process::id()
-    ));
-    if !dir.is_dir() {
-        return Err(std::io::Error::new(
-            std::io::ErrorKind::NotFound,
-            format!("{} is not a folder", dir.display()),
-        ));
     }
-    Ok(path)
+    unreachable!("some numbered name is free")
 }
 
 #[cfg(test)]

@@ -1,5 +1,6 @@
 //! Screenshots (the S key): what the window shows, HUD included, saved as
-//! `newtons-cradle-YYYYMMDD-HHMMSS.png` (UTC) in the working directory.
+//! `newtons-cradle-YYYYMMDD-HHMMSS.png` (UTC) in the working directory; and
+//! the names of the other files saved so ([`save_named`]: the graphs' CSV).
 
 use crate::trace::Image;
 use std::path::Path;
@@ -35,6 +36,16 @@ pub fn save(
             }
         }
     });
+}
+
+/// Writes `bytes` as `newtons-cradle-STAMP.EXT` in the working directory
+/// (numbered as [`free_named`] does: never over a file); returns the name.
+///
+/// # Errors
+/// The file cannot be written.
+pub fn save_named(ext: &str, bytes: &[u8]) -> Result<String, crate::export::WriteError> {
+    let name = free_named(&stamp_now(), ext, |n| Path::new(n).exists());
+    crate::export::write_all(Path::new(&name), bytes).map(|()| name)
 }
 
 /// `newtons-cradle-STAMP.png`, or with `-2`, `-3`, .. when `taken` says the name

@@ -3,12 +3,12 @@
 //! redraws; it steps the ECS world and the incremental tracer. Nothing here knows
 //! of winit or pixels, so its rules are unit-tested without a display.
 
-use super::controls::History;
+use super::controls::{Apply, Controls, History};
+use super::drag;
 use super::fit_window;
 use super::keys::Action;
 use super::mouse::ViewChange;
 use super::notice::{self, Notices};
-use super::orbit::Orbit;
 use super::presets::{self, PRESETS};
 use crate::cli::{Common, InputError};
 use crate::config::{Config, ConfigSource, MAX_BALLS};
@@ -54,9 +54,6 @@ pub enum Effect {
     Quit,
 }
 
-/// A line of HUD text and its colour.
-pub type HudLine = (String, [u8; 3]);
-
 /// The app's state between frames.
 pub struct Session {
     /// The asset as loaded (with the command line's overrides): what R returns to.
@@ -73,24 +70,18 @@ pub struct Session {
     /// The scene changed while paused: trace once more.
     retrace: bool,
     last_frame: Option<Instant>,
-    /// Smoothed frames per second and trace milliseconds.
-    fps: f64,
-    trace_ms: f64,
-    /// The log's line every 2 s while running.
+    /// The HUD's frame rates and the log's line every 2 s while running.
     rate_log: rate_log::RateLog,
     hud: HudMode,
     error: Option<String>,
     /// Simulated seconds per wall-clock second: a power of two, 1/16..=4.
     rate: f64,
-    /// The user's view, as offsets from the asset's camera.
-    orbit: Orbit,
+    /// The user's view: orbit, fit region, whether it moves.
+    view: Viewpoint,
     /// The ball being dragged, if one is.
     dragging: Option<usize>,
     /// The control panel is shown.
     panel: bool,
-    /// When the view last moved: until it rests for [`VIEW_REST`], frames trace
-    /// one sample per pixel, so a drag of the view keeps up.
-    view_moved: Option<Instant>,
     /// What the user just did, shown for a moment.
     notices: Notices,
     /// The lifted balls of a drag to the right, which the config's start (balls
@@ -98,9 +89,6 @@ pub struct Session {
     custom: Option<String>,
     /// The states before the panel's last changes, for Ctrl+Z.
     history: History<(Config, Config, f64)>,
-    /// The right edge (a share of the width) of the region the view fits the
-    /// cradle into: left of the control panel while it is open.
-    fit_right: f32,
     /// The last frame's physics could not reach the clock's time within
     /// [`PHYSICS_BUDGET`]: the swing runs slower than the rate says.
     behind: bool,
@@ -108,15 +96,9 @@ pub struct Session {
     hearing: Hearing,
 }
 
-/// The right edge of the fit region without the panel.
-const FULL_WIDTH: f32 = 1.0 - crate::scene::view::FIT_SIDE;
-
 /// The wall-clock time a frame's physics may take: past it, the frame shows
 /// the latest state reached, and the swing runs slower than asked.
 pub const PHYSICS_BUDGET: std::time::Duration = std::time::Duration::from_millis(50);
-
-/// How long the view must rest before frames are anti-aliased again.
-pub const VIEW_REST: std::time::Duration = std::time::Duration::from_millis(250);
 
 /// The time rates `,` and `.` step through: 1/16x ..= 4x, by powers of two.
 pub const RATES: std::ops::RangeInclusive<i32> = -4..=2;
@@ -146,20 +128,16 @@ impl Session {
             tracer: tracer::Tracer::default(),
             retrace: true,
             last_frame: None,
-            fps: 0.0,
-            trace_ms: 0.0,
             rate_log: rate_log::RateLog::default(),
             hud: HudMode::Status,
             error: None,
             rate: 1.0,
-            orbit: Orbit::default(),
+            view: Viewpoint::default(),
             dragging: None,
             panel: false,
-            view_moved: None,
             notices: Notices::default(),
             custom: None,
             history: History::default(),
-            fit_right: FULL_WIDTH,
             behind: false,
             hearing: Hearing::new(muted),
         })
@@ -235,7 +213,7 @@ impl Session {
             }
             Action::Undo => self.undo(),
             Action::HomeView => {
-                self.orbit = Orbit::default();
+                self.view.home();
                 self.show_view();
             }
             Action::Step => {
@@ -265,32 +243,22 @@ impl Session {
     /// Changes the view by `change` (a drag or the wheel) and shows it, at one
     /// sample per pixel until the view rests ([`Self::settle`]).
     pub fn view(&mut self, change: ViewChange) {
-        self.view_moved = Some(Instant::now());
+        self.view.change(&self.config, change, Instant::now());
         self.world.set_quality(1, None);
-        match change {
-            ViewChange::Turn(dx, dy) => self.orbit.turn(dx, dy),
-            ViewChange::Pan(dx, dy) => self.orbit.pan(&self.config, dx, dy),
-            ViewChange::Zoom(steps) => self.orbit.zoom(steps),
-        }
         self.show_view();
     }
 
     /// Puts the user's view into the world; the next frame is traced in full.
     fn show_view(&mut self) {
-        self.world
-            .set_camera(self.orbit.camera(&self.config, self.fit_right));
+        self.world.set_camera(self.view.camera(&self.config));
         self.retrace = true;
     }
 
     /// Where the open control panel's left edge is (a share of the picture's
     /// width), or `None` once it is closed: the view fits the cradle left of
-    /// it. Steps of 1/64 of the width, so the panel's own small changes of
-    /// size do not move the view.
+    /// it ([`Viewpoint::fit_left_of`]).
     pub fn set_panel_edge(&mut self, edge: Option<f32>) {
-        let right = edge.map_or(FULL_WIDTH, |e| ((e - 0.01) * 64.0).floor() / 64.0);
-        let right = right.clamp(0.3, FULL_WIDTH);
-        if right != self.fit_right {
-            self.fit_right = right;
+        if self.view.fit_left_of(edge) {
             self.show_view();
         }
     }
@@ -299,7 +267,7 @@ impl Session {
     /// is anti-aliased again (the window wakes for it).
     #[must_use]
     pub fn settle(&self) -> Option<Instant> {
-        self.view_moved.map(|t| t + VIEW_REST)
+        self.view.settle()
     }
 
     /// Traces at the config's anti-aliasing from the next frame on.
@@ -453,11 +421,8 @@ impl Session {
             return;
         }
         let text = crate::scene::record::csv(rec);
-        let stamp = super::screenshot::stamp_now();
-        let name =
-            super::screenshot::free_named(&stamp, "csv", |n| std::path::Path::new(n).exists());
-        match crate::export::write_all(std::path::Path::new(&name), text.as_bytes()) {
-            Ok(()) => {
+        match super::screenshot::save_named("csv", text.as_bytes()) {
+            Ok(name) => {
                 tracing::info!("saved graphs {name}");
                 self.notify(format!("saved graphs {name}"), notice::GOOD);
             }
@@ -525,8 +490,7 @@ impl Session {
     /// launched before is taken back first.
     pub fn step(&mut self, now: Instant) {
         let mut traced = self.tracer.join();
-        if self.settle().is_some_and(|t| now >= t) {
-            self.view_moved = None;
+        if self.view.rested(now) {
             self.apply_quality();
             self.retrace = true;
         }
@@ -550,15 +514,14 @@ impl Session {
             self.stepped(now_traced.is_none());
             traced = now_traced.or(traced);
             if running && dt > 0.0 {
-                self.fps = smooth(self.fps, 1.0 / dt);
+                self.rate_log.shown_after(dt);
             }
             self.retrace = false;
         }
-        if let Some(ms) = traced {
-            if running && let Some(line) = self.rate_log.frame(now, ms) {
-                tracing::info!("{line}");
-            }
-            self.trace_ms = smooth(self.trace_ms, ms);
+        if let Some(ms) = traced
+            && let Some(line) = self.rate_log.traced(now, ms, running)
+        {
+            tracing::info!("{line}");
         }
         if !running {
             self.rate_log.pause();
@@ -625,6 +588,191 @@ impl Session {
         self.tracer.changes()
     }
 
+    /// A left press at picture pixel `at`: grabs the ball there, if any, and
+    /// holds the swing while it is dragged. True when a ball was grabbed.
+    pub fn grab(&mut self, at: (f64, f64)) -> bool {
+        let snap = &self.world.cradle().snapshot;
+        self.dragging = drag::pick(&self.config, &self.world.scene().camera, snap, at);
+        if let Some(ball) = self.dragging {
+            tracing::info!("picked ball {} at picture pixel {at:?}", ball + 1);
+            self.world.set_running(false);
+            self.restart_clock();
+        }
+        self.dragging.is_some()
+    }
+
+    /// The cursor at picture pixel `at` while a ball is held: the ball (with
+    /// those between it and the end it is pulled to) hangs at the angle there,
+    /// and the physics restarts from that state, exactly.
+    /// True when a ball is held (the picture changes).
+    pub fn drag_to(&mut self, at: (f64, f64)) -> bool {
+        let Some(ball) = self.dragging else {
+            return false;
+        };
+        let camera = self.world.scene().camera;
+        tracing::debug!("ball {ball} dragged to picture pixel {at:?}");
+        if let Some((theta, lifted, angle)) = drag::dragged(&self.config, &camera, ball, at) {
+            self.world.start_from(&self.config, &theta, lifted, angle);
+            self.show_dragged(ball, lifted, theta[ball]);
+            self.retrace = true;
+        }
+        true
+    }
+
+    /// What the HUD and panel say after a drag that left `lifted` balls at
+    /// angle `theta` (rad, signed), `ball` among them. Pulled left, the state
+    /// is the config's own start (the leftmost balls lifted), and becomes it;
+    /// pulled right, it is told as it is.
+    fn show_dragged(&mut self, ball: usize, lifted: usize, theta: f64) {
+        let deg = theta.abs().to_degrees();
+        if theta <= 0.0 {
+            self.config.start.lift = if theta == 0.0 { 0 } else { lifted };
+            self.config.start.angle_deg = deg;
+            self.custom = None;
+        } else {
+            let last = self.config.cradle.balls;
+            let balls = if ball + 1 == last {
+                format!("ball {last}")
+            } else {
+                format!("balls {}-{last}", ball + 1)
+            };
+            self.custom = Some(format!("{balls} at {deg:.1} deg right"));
+        }
+    }
+
+    /// The ball held, if one is (numbered from 0 at the left).
+    #[must_use]
+    pub fn holding(&self) -> Option<usize> {
+        self.dragging
+    }
+
+    /// What a drag to the right lifted ("balls 4-5 at 31.0 deg right"), which
+    /// the config's start cannot say; `None` otherwise.
+    #[must_use]
+    pub fn custom_start(&self) -> Option<&str> {
+        self.custom.as_deref()
+    }
+
+    /// The left button up: a held ball is let go, and the swing runs from there.
+    pub fn release(&mut self) {
+        if self.dragging.take().is_some() {
+            self.world.set_running(true);
+            self.restart_clock();
+        }
+    }
+
+    /// Whether the control panel is shown.
+    #[must_use]
+    pub fn panel_open(&self) -> bool {
+        self.panel
+    }
+
+    /// The control panel's settings now.
+    #[must_use]
+    pub fn controls(&self) -> Controls {
+        Controls::of(&self.config, self.rate.log2().round() as i32)
+    }
+
+    /// Applies the control panel's settings ([`Controls::apply_to`]); a refused
+    /// edit is shown in the HUD and changes nothing.
+    pub fn apply_controls(&mut self, controls: &Controls) {
+        let rate = 2f64.powi(controls.rate_exp.clamp(*RATES.start(), *RATES.end()));
+        let applied = controls.apply_to(&self.config);
+        if rate != self.rate || matches!(applied, Ok(Apply::Live(_) | Apply::Restart(_))) {
+            self.remember();
+        }
+        self.rate = rate;
+        match applied {
+            Ok(Apply::Same) => {}
+            Ok(Apply::Live(c)) => {
+                self.config = c;
+                self.apply_quality();
+                self.retrace = true;
+                self.error = None;
+            }
+            Ok(Apply::Restart(c)) => {
+                self.config = c;
+                self.error = None;
+                self.respawn();
+            }
+            Err(e) => {
+                let first = e.lines().next().unwrap_or_default().to_owned();
+                self.notify(format!("not applied: {first}"), notice::BAD);
+                self.error = Some(e);
+            }
+        }
+    }
+
+    /// Each ball's share of the starting energy; the share left in all, and its
+    /// relative error (of the energy balance when the cradle dissipates).
+    #[must_use]
+    pub fn energies(&self) -> (Vec<f64>, (f64, f64)) {
+        self.world.cradle().energies()
+    }
+
+    /// What to draw over the picture at `now` (notices past their time go).
+    pub fn overlay(&mut self, now: Instant) -> Overlay {
+        Overlay {
+            status: self.hud_lines(),
+            help: self.hud == HudMode::Help,
+            notices: self.notices.at(now),
+        }
+    }
+
+    /// Whether the HUD's status shows (screenshots then keep what the window
+    /// shows; without it they are the bare picture).
+    #[must_use]
+    pub fn hud_on(&self) -> bool {
+        self.hud != HudMode::Off
+    }
+
+    /// The lifted balls as the HUD and panel say it: the count and angle, or
+    /// the balls and angle a drag to the right made.
+    #[must_use]
+    pub fn lifted_text(&self) -> String {
+        match &self.custom {
+            Some(custom) => format!("custom ({custom})"),
+            None => format!(
+                "{} at {:.1} deg",
+                self.config.start.lift, self.config.start.angle_deg
+            ),
+        }
+    }
+
+    /// The HUD's status lines for its mode (none when off), plus any config error.
+    #[must_use]
+    pub fn hud_lines(&self) -> Vec<HudLine> {
+        let cradle = self.world.cradle();
+        let (params, snap) = (cradle.cradle.params(), &cradle.snapshot);
+        let motion = match self.dragging {
+            Some(ball) => Motion::Holding(ball),
+            None if self.running() => {
+                let (fps, trace_ms) = self.rate_log.shown();
+                Motion::Running { fps, trace_ms }
+            }
+            None => Motion::Paused,
+        };
+        Readout {
+            mode: self.hud,
+            motion,
+            time: self.time(),
+            rate: self.rate,
+            slowed: self.behind && self.running(),
+            balls: self.config.cradle.balls,
+            lifted: self.lifted_text(),
+            model: self.config.contact.model.name(),
+            energy: if params.dissipative() {
+                Energy::Left(self.energies().1.0)
+            } else {
+                Energy::Error(cradle.cradle.energy_rel_error(snap))
+            },
+            momentum: params.momentum(&snap.theta, &snap.omega),
+            muted: self.muted(),
+            error: self.error.as_deref(),
+        }
+        .lines()
+    }
+
     /// Simulated time (s) of the last frame.
     #[must_use]
     pub fn time(&self) -> f64 {
@@ -634,22 +782,14 @@ impl Session {
 
 use super::audible::{Audible, Hearing};
 
-mod dragging;
-mod editing;
 mod rate_log;
 mod status;
 mod tracer;
+mod view;
 
-pub use status::Overlay;
-
-/// Exponential smoothing over ~10 frames keeps the HUD's numbers readable.
-fn smooth(old: f64, new: f64) -> f64 {
-    if old == 0.0 {
-        new
-    } else {
-        0.9 * old + 0.1 * new
-    }
-}
+use status::{Energy, Motion, Readout};
+pub use status::{HudLine, Overlay};
+use view::Viewpoint;
 
 #[cfg(test)]
 mod tests;

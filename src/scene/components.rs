@@ -129,6 +129,33 @@ impl CradleState {
         let snapshot = cradle.snapshot(0.0);
         Self { cradle, snapshot }
     }
+
+    /// Each ball's share of the starting energy; the share left in all, and its
+    /// relative error (of the energy balance when the cradle dissipates).
+    #[must_use]
+    pub fn energies(&self) -> (Vec<f64>, (f64, f64)) {
+        let p = self.cradle.params();
+        let e0 = self.cradle.initial_energy();
+        let s = &self.snapshot;
+        let shares = s
+            .theta
+            .iter()
+            .zip(&s.omega)
+            .map(|(&t, &w)| {
+                if e0 > 0.0 {
+                    p.ball_energy(t, w) / e0
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        let left = if e0 > 0.0 {
+            self.cradle.energy(s) / e0
+        } else {
+            1.0
+        };
+        (shares, (left, self.cradle.energy_rel_error(s)))
+    }
 }
 
 /// The impacts of the last frame: those after the previous frame's time, up

@@ -1,6 +1,7 @@
-//! The frame-rate log: while the swing runs, one line every 2 seconds with the
-//! frames per second and the median trace time of those 2 seconds, for the
-//! session to write to the log (`58.7 fps, trace 3.1 ms`). Window-free.
+//! The frame rates: smoothed for the HUD, and while the swing runs one line
+//! every 2 seconds with the frames per second and the median trace time of
+//! those 2 seconds, for the session to write to the log (`58.7 fps, trace
+//! 3.1 ms`). Window-free.
 
 use std::time::{Duration, Instant};
 
@@ -16,9 +17,40 @@ pub struct RateLog {
     frames: u32,
     /// Trace times (ms) of the span's frames.
     traces: Vec<f64>,
+    /// Frames per second and trace milliseconds, smoothed over ~10 frames
+    /// so that the HUD's numbers stay readable.
+    fps: f64,
+    trace_ms: f64,
+}
+
+/// Exponential smoothing over ~10 frames.
+fn smooth(old: f64, new: f64) -> f64 {
+    if old == 0.0 {
+        new
+    } else {
+        0.9 * old + 0.1 * new
+    }
 }
 
 impl RateLog {
+    /// The smoothed frames per second and trace milliseconds.
+    #[must_use]
+    pub fn shown(&self) -> (f64, f64) {
+        (self.fps, self.trace_ms)
+    }
+
+    /// A running frame `dt` seconds after the one before.
+    pub fn shown_after(&mut self, dt: f64) {
+        self.fps = smooth(self.fps, 1.0 / dt);
+    }
+
+    /// A frame traced in `trace_ms`, shown at `now` (`running`: the swing
+    /// runs): the line to log, if one is due.
+    pub fn traced(&mut self, now: Instant, trace_ms: f64, running: bool) -> Option<String> {
+        self.trace_ms = smooth(self.trace_ms, trace_ms);
+        running.then(|| self.frame(now, trace_ms)).flatten()
+    }
+
     /// A frame shown at `now` that took `trace_ms` to trace; the line to log
     /// when the span has lasted [`EVERY`].
     pub fn frame(&mut self, now: Instant, trace_ms: f64) -> Option<String> {
@@ -43,7 +75,8 @@ impl RateLog {
 
     /// The swing stopped: the next frame starts a new span.
     pub fn pause(&mut self) {
-        *self = Self::default();
+        (self.since, self.frames) = (None, 0);
+        self.traces.clear();
     }
 }
 
