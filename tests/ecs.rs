@@ -293,10 +293,15 @@ fn the_change_the_ecs_hands_the_tracer_is_what_moved() {
     w.frame(0.0);
     assert_eq!(w.take_change(), Change::Any, "a new view");
     assert_eq!(w.scene().camera, turned);
-    w.set_quality(1, None);
+    w.set_quality(newtons_cradle::scene::components::Quality {
+        samples: 1,
+        adaptive: None,
+        coarse: 2,
+    });
     w.frame(0.0);
     assert_eq!(w.take_change(), Change::Any, "a new quality");
-    assert_eq!((w.scene().samples, w.scene().adaptive), (1, None));
+    let s = w.scene();
+    assert_eq!((s.samples, s.adaptive, s.coarse), (1, None, 2));
     w.respawn(&config);
     w.frame(0.0);
     assert_eq!(w.take_change(), Change::Any, "a respawned world");

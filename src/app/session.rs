@@ -13,6 +13,7 @@ use super::presets::{self, PRESETS};
 use crate::cli::{Common, InputError};
 use crate::config::{Config, ConfigSource, MAX_BALLS};
 use crate::scene::CradleWorld;
+use crate::scene::components::Quality;
 use crate::trace::{self, Changes, Image};
 use std::time::Instant;
 
@@ -99,6 +100,10 @@ pub struct Session {
 /// The wall-clock time a frame's physics may take: past it, the frame shows
 /// the latest state reached, and the swing runs slower than asked.
 pub const PHYSICS_BUDGET: std::time::Duration = std::time::Duration::from_millis(50);
+
+/// Pixels per side of the blocks traced with one ray each while the view
+/// moves (`Scene::coarse`): a quarter of the rays, so a drag keeps up.
+pub const MOVING_VIEW_BLOCK: u32 = 2;
 
 /// The time rates `,` and `.` step through: 1/16x ..= 4x, by powers of two.
 pub const RATES: std::ops::RangeInclusive<i32> = -4..=2;
@@ -241,10 +246,15 @@ impl Session {
     }
 
     /// Changes the view by `change` (a drag or the wheel) and shows it, at one
-    /// sample per pixel until the view rests ([`Self::settle`]).
+    /// ray per [`MOVING_VIEW_BLOCK`]-wide block of pixels until the view rests
+    /// ([`Self::settle`]).
     pub fn view(&mut self, change: ViewChange) {
         self.view.change(&self.config, change, Instant::now());
-        self.world.set_quality(1, None);
+        self.world.set_quality(Quality {
+            samples: 1,
+            adaptive: None,
+            coarse: MOVING_VIEW_BLOCK,
+        });
         self.show_view();
     }
 
@@ -274,7 +284,11 @@ impl Session {
     fn apply_quality(&mut self) {
         let r = &self.config.render;
         let adaptive = r.adaptive.then_some(r.adaptive_threshold as f32);
-        self.world.set_quality(r.samples, adaptive);
+        self.world.set_quality(Quality {
+            samples: r.samples,
+            adaptive,
+            coarse: 1,
+        });
     }
 
     /// Hidden time does not count: the swing resumes where it stopped. No click

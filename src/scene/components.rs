@@ -198,14 +198,17 @@ pub struct FlatScene {
 #[derive(Resource, Debug, Clone, Copy, PartialEq)]
 pub struct View(pub trace::Camera);
 
-/// How the tracer samples a pixel: samples per pixel, and the adaptive
-/// threshold (`None`: every pixel at every sample).
+/// How the tracer samples a pixel: samples per pixel, the adaptive
+/// threshold (`None`: every pixel at every sample), and the blocks of pixels
+/// traced with one ray each (1: every pixel; more while the view moves).
 #[derive(Resource, Debug, Clone, Copy, PartialEq)]
 pub struct Quality {
     /// Samples per pixel.
     pub samples: u32,
     /// Adaptive anti-aliasing's threshold.
     pub adaptive: Option<f32>,
+    /// Pixels per side of a block traced with one ray (`Scene::coarse`).
+    pub coarse: u32,
 }
 
 /// The box the balls and strings stay in at every time, at their true

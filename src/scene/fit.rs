@@ -132,5 +132,6 @@ pub fn static_scene(config: &Config) -> trace::Scene {
         samples: r.samples,
         adaptive: r.adaptive.then_some(r.adaptive_threshold as f32),
         motion_bounds: Some(motion_bounds(config)),
+        coarse: 1,
     }
 }

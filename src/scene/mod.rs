@@ -149,12 +149,12 @@ impl CradleWorld {
         self.show_at(0.0);
     }
 
-    /// Traces with `samples` per pixel (adaptive at `adaptive`) from the next frame
-    /// on: a change the running swing absorbs.
-    pub fn set_quality(&mut self, samples: u32, adaptive: Option<f32>) {
+    /// Traces at `quality` from the next frame on: a change the running
+    /// swing absorbs.
+    pub fn set_quality(&mut self, quality: components::Quality) {
         self.world
             .resource_mut::<components::Quality>()
-            .set_if_neq(components::Quality { samples, adaptive });
+            .set_if_neq(quality);
     }
 
     /// Looks through `camera` from the next frame on (the user's view; a respawn

@@ -84,6 +84,7 @@ fn insert_resources(world: &mut World, config: &Config) {
     world.insert_resource(Quality {
         samples: scene.samples,
         adaptive: scene.adaptive,
+        coarse: scene.coarse,
     });
     world.insert_resource(FlatScene {
         scene,

@@ -121,6 +121,7 @@ pub fn apply_view(view: Res<View>, quality: Res<Quality>, mut flat: ResMut<FlatS
         flat.scene.camera = view.0;
         flat.scene.samples = quality.samples;
         flat.scene.adaptive = quality.adaptive;
+        flat.scene.coarse = quality.coarse;
         flat.change.merge(trace::Change::Any);
     }
 }

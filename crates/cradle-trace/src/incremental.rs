@@ -111,6 +111,7 @@ fn same_but_motion(a: &Scene, b: &Scene) -> bool {
         samples,
         adaptive,
         motion_bounds,
+        coarse,
     } = a;
     objects.len() == b.objects.len()
         && objects.iter().zip(&b.objects).all(|(o, p)| {
@@ -124,6 +125,7 @@ fn same_but_motion(a: &Scene, b: &Scene) -> bool {
         && *samples == b.samples
         && *adaptive == b.adaptive
         && *motion_bounds == b.motion_bounds
+        && *coarse == b.coarse
 }
 
 /// Renders frame after frame, re-tracing only what motion changed. Each pixel
@@ -257,6 +259,9 @@ impl Incremental {
     /// since the last frame this renderer traced, and returns the picture.
     pub fn render_changed(&mut self, scene: &Scene, change: &Change) -> &Image {
         self.last = None;
+        if scene.coarse > 1 {
+            return self.render_coarse(scene);
+        }
         // The moved objects, if the change is one this renderer can follow.
         let list = match change {
             Change::Moved(list)
@@ -329,6 +334,21 @@ impl Incremental {
         }
         self.id = id;
         self.image.as_ref().expect("rendered above")
+    }
+
+    /// A frame at one ray per block ([`Scene::coarse`]): traced afresh and
+    /// stretched, and nothing kept for the next frame, which is full.
+    fn render_coarse(&mut self, scene: &Scene) -> &Image {
+        let img = crate::render::render(scene);
+        let (w, h) = crate::render::coarse_size(scene.size, scene.coarse);
+        self.retraced = w as usize * h as usize;
+        self.full = true;
+        self.shapes.clear();
+        self.rows.clear();
+        self.layers = None;
+        self.since = None;
+        self.id = NEXT_ID.fetch_add(1, Ordering::Relaxed);
+        self.image.insert(img)
     }
 
     /// Which bytes the last frame may have changed (`None` before the first).

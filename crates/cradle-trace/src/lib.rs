@@ -36,6 +36,7 @@ pub mod scene;
 mod shade;
 pub mod shadow;
 mod simd;
+mod stretch;
 mod supersample;
 pub mod tiles;
 mod tuning;

@@ -2,13 +2,16 @@
 //! anti-aliasing one centre sample and then every sample at that picture's
 //! edges; rows in parallel with rayon ([`render`]) or serially
 //! ([`render_serial`], with [`RenderOptions::FULL`] the reference). Both run
-//! the same per-pixel code (`frame`), so their bytes are equal.
+//! the same per-pixel code (`frame`), so their bytes are equal. A scene traced
+//! at one ray per block of pixels ([`Scene::coarse`], while the view moves) is
+//! traced at the smaller size and stretched.
 
 use super::adaptive::adaptive_full;
 use super::color::Image;
 use super::frame::{Frame, for_rows};
 use super::motion::RowMotion;
 use super::scene::Scene;
+use super::stretch::stretch;
 use std::sync::atomic::{AtomicU32, Ordering};
 
 pub use super::frame::RenderOptions;
@@ -60,6 +63,9 @@ pub fn render_serial(scene: &Scene) -> Image {
 /// `RenderOptions::FULL` is the reference renderer.
 #[must_use]
 pub fn render_serial_with(scene: &Scene, options: RenderOptions) -> Image {
+    if scene.coarse > 1 {
+        return coarse(scene, |s| render_serial_with(s, options), false);
+    }
     image(&Frame::new(scene, options, false), false).0
 }
 
@@ -73,7 +79,31 @@ pub fn render(scene: &Scene) -> Image {
 /// measure what each earns); the same bytes whatever they are.
 #[must_use]
 pub fn render_with(scene: &Scene, options: RenderOptions) -> Image {
+    if scene.coarse > 1 {
+        return coarse(scene, |s| render_with(s, options), true);
+    }
     image(&Frame::new(scene, options, false), true).0
+}
+
+/// The size traced for a `width x height` picture at one ray per `k x k`
+/// block of pixels ([`Scene::coarse`]): rounded up.
+#[must_use]
+pub fn coarse_size((width, height): (u32, u32), k: u32) -> (u32, u32) {
+    let k = k.max(1);
+    (width.div_ceil(k), height.div_ceil(k))
+}
+
+/// `scene` at one ray per block ([`Scene::coarse`]): traced by `trace` at
+/// [`coarse_size`], one sample per pixel, then stretched to the scene's size.
+fn coarse(scene: &Scene, trace: impl Fn(&Scene) -> Image, parallel: bool) -> Image {
+    let small = Scene {
+        size: coarse_size(scene.size, scene.coarse),
+        samples: 1,
+        adaptive: None,
+        coarse: 1,
+        ..scene.clone()
+    };
+    stretch(&trace(&small), scene.size, parallel)
 }
 
 /// [`render`], adding 1 to `rows_done` as each row of each pass is done, so
@@ -82,6 +112,9 @@ pub fn render_with(scene: &Scene, options: RenderOptions) -> Image {
 /// the edges). The same picture, byte for byte.
 #[must_use]
 pub fn render_counting(scene: &Scene, rows_done: &AtomicU32) -> Image {
+    if scene.coarse > 1 {
+        return coarse(scene, |s| render_counting(s, rows_done), true);
+    }
     image_counting(
         &Frame::new(scene, RenderOptions::FAST, false),
         true,

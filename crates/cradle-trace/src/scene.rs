@@ -85,6 +85,11 @@ pub struct Scene {
     /// known: pixels whose rays never enter it never change while the rest of the
     /// scene stays the same.
     pub motion_bounds: Option<(Vec3, Vec3)>,
+    /// Pixels per side of the blocks traced with one ray each: 1 traces every
+    /// pixel; 2 (while the view moves) one ray at the centre of each 2x2
+    /// block, the picture then stretched to the whole size (`samples` and
+    /// `adaptive` are ignored then).
+    pub coarse: u32,
 }
 
 impl Default for Scene {
@@ -103,6 +108,7 @@ impl Default for Scene {
             samples: 1,
             adaptive: None,
             motion_bounds: None,
+            coarse: 1,
         }
     }
 }

@@ -159,6 +159,7 @@ fn a_mirror_ray_never_meets_the_convex_object_it_leaves() {
         samples: 1,
         adaptive: None,
         motion_bounds: None,
+        coarse: 1,
     };
     let full = Prepared::new(&s);
     let fast = Prepared::new(&s).with_bvh(true);

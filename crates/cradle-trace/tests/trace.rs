@@ -105,6 +105,7 @@ fn scene(objects: Vec<Object>, lights: Vec<Light>, size: (u32, u32)) -> Scene {
         samples: 1,
         adaptive: None,
         motion_bounds: None,
+        coarse: 1,
     }
 }
 
@@ -358,4 +359,44 @@ fn a_counted_render_is_the_same_picture_and_counts_every_row_of_each_pass() {
         assert!(counted.rgba == trace::render(&scene).rgba, "the same bytes");
         assert_eq!(done.load(Ordering::Relaxed), passes * 24);
     }
+}
+
+/// A coarse frame (one ray per 2x2 block, `Scene::coarse`) is the picture
+/// traced at half the size, stretched: its pixel at the centre of a block of
+/// a flat region is that region's colour, it stays close to the full frame
+/// (a moving view's preview), and an incremental renderer's next frame at
+/// full detail is the full render, byte for byte.
+#[test]
+fn a_coarse_frame_previews_the_picture_and_the_next_frame_is_full() {
+    let light = Light::Point {
+        position: Vec3::new(2., 3., 4.),
+        color: Vec3::ONE,
+    };
+    let mut s = scene(
+        vec![sphere(Vec3::ZERO, 1.0, matte(Vec3::new(0.8, 0.3, 0.2)))],
+        vec![light],
+        (64, 48),
+    );
+    let full = cradle_trace::render(&s);
+    s.coarse = 2;
+    let coarse = cradle_trace::render(&s);
+    assert_eq!((coarse.width, coarse.height), (64, 48));
+    assert_ne!(coarse.rgba, full.rgba, "a preview, not the picture");
+    // The background far from the sphere is flat: equal there.
+    assert_eq!(coarse.rgba[..16], full.rgba[..16]);
+    // On average close: under 8 levels of 255 per byte.
+    let diff: u64 = coarse
+        .rgba
+        .iter()
+        .zip(&full.rgba)
+        .map(|(&a, &b)| u64::from(a.abs_diff(b)))
+        .sum();
+    assert!(diff < 8 * full.rgba.len() as u64, "mean difference {diff}");
+    let mut inc = cradle_trace::Incremental::new();
+    inc.render(&s);
+    assert_eq!(inc.image().map(|i| &i.rgba), Some(&coarse.rgba));
+    s.coarse = 1;
+    let next = inc.render(&s).clone();
+    assert!(inc.last_was_full());
+    assert!(next.rgba == full.rgba, "at rest, the full frame");
 }

@@ -79,6 +79,7 @@ fn packets_note_the_same_motion_cells_as_the_scalar_path() {
         samples: 1,
         adaptive: None,
         motion_bounds: Some((Vec3::new(-0.3, 0.0, -0.1), Vec3::new(0.3, 0.3, 0.1))),
+        coarse: 1,
     };
     let (fast_img, fast_rows) = image(&Frame::new(&scene, RenderOptions::FAST, true), false);
     let (full_img, full_rows) = image(&Frame::new(&scene, RenderOptions::FULL, true), false);
@@ -175,6 +176,7 @@ fn packets_equal_the_reference_with_a_checkered_mirror_ball() {
         samples: 1,
         adaptive: None,
         motion_bounds: None,
+        coarse: 1,
     };
     assert_fast_is_full(&scene, "the same picture");
 }

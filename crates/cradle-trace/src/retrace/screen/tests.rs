@@ -45,6 +45,7 @@ fn scene() -> Scene {
         samples: 1,
         adaptive: None,
         motion_bounds: None,
+        coarse: 1,
     }
 }
 
