@@ -67,6 +67,21 @@ fn bench_render_mode_times_one_mode_alone() {
 }
 
 #[test]
+fn bench_render_orbit_reports_the_moving_views_psnr_against_the_frame_at_rest() {
+    let o = tiny_render(&["--mode", "orbit"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let v = lines(&o);
+    assert_eq!(v.len(), 1, "one row for one thread count");
+    assert_eq!(v[0]["mode"], "orbit");
+    // A 2x2-block preview of the same view: close to the resting frame (well
+    // above the ~10 dB of an unrelated picture) but not equal to it (finite).
+    let psnr = v[0]["psnr"].as_f64().expect("orbit rows carry a PSNR");
+    assert!((15.0..80.0).contains(&psnr), "PSNR {psnr} dB");
+    let o = tiny_render(&["--mode", "full"]);
+    assert!(lines(&o)[0]["psnr"].is_null(), "only orbit rows have a PSNR");
+}
+
+#[test]
 fn bench_render_without_skips_times_full_frames_and_needs_mode_full() {
     let with = tiny_render;
     let o = with(&["--mode", "full", "--without", "tiles,shadows,bvh,packets"]);

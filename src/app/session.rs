@@ -101,10 +101,6 @@ pub struct Session {
 /// the latest state reached, and the swing runs slower than asked.
 pub const PHYSICS_BUDGET: std::time::Duration = std::time::Duration::from_millis(50);
 
-/// Pixels per side of the blocks traced with one ray each while the view
-/// moves (`Scene::coarse`): a quarter of the rays, so a drag keeps up.
-pub const MOVING_VIEW_BLOCK: u32 = 2;
-
 /// The time rates `,` and `.` step through: 1/16x ..= 4x, by powers of two.
 pub const RATES: std::ops::RangeInclusive<i32> = -4..=2;
 
@@ -245,16 +241,12 @@ impl Session {
         Effect::Redraw
     }
 
-    /// Changes the view by `change` (a drag or the wheel) and shows it, at one
-    /// ray per [`MOVING_VIEW_BLOCK`]-wide block of pixels until the view rests
-    /// ([`Self::settle`]).
+    /// Changes the view by `change` (a drag or the wheel) and shows it at
+    /// [`Quality::MOVING`] (one ray per 2x2 block of pixels) until the view
+    /// rests ([`Self::settle`]).
     pub fn view(&mut self, change: ViewChange) {
         self.view.change(&self.config, change, Instant::now());
-        self.world.set_quality(Quality {
-            samples: 1,
-            adaptive: None,
-            coarse: MOVING_VIEW_BLOCK,
-        });
+        self.world.set_quality(Quality::MOVING);
         self.show_view();
     }
 

@@ -3,8 +3,10 @@
 //! with medians.
 
 use super::median;
+use super::quality::{psnr, rmse};
 use crate::config::Config;
 use crate::scene::CradleWorld;
+use crate::scene::components::Quality;
 use crate::trace;
 use serde::Serialize;
 use std::io::Write;
@@ -28,12 +30,16 @@ pub struct Row {
     pub frames: u32,
     /// Mean share of the pixels traced per timed frame (1 for full frames).
     pub traced: f64,
+    /// `orbit`: the median PSNR (dB) of its frames against the frames at rest
+    /// (the asset's anti-aliasing, every pixel); `null` otherwise.
+    pub psnr: Option<f64>,
 }
 
 /// Times `frames` frames of the swinging cradle (60 fps of simulated time, after two
 /// warm-up frames) with each thread count in `threads`, in each of `modes`
 /// (`full`: every pixel traced afresh with the skips of `options`;
-/// `incremental`: only what motion changed, with every skip); calls `each` per
+/// `incremental`: only what motion changed, with every skip; `orbit`: the
+/// view turning a degree a frame, at [`Quality::MOVING`]); calls `each` per
 /// row.
 ///
 /// # Errors
@@ -54,8 +60,14 @@ pub fn bench_render(
             let mut inc = trace::Incremental::new();
             let mut times = Vec::new();
             let mut traced = 0.0;
+            let mut psnrs = Vec::new();
+            let home = world.scene().camera;
             // Two warm-up frames (the first incremental one is traced in full).
             for f in 0..frames + 2 {
+                if mode == "orbit" {
+                    world.set_quality(Quality::MOVING);
+                    world.set_camera(turned(home, f as f32));
+                }
                 world.show_at(0.5 + f64::from(f) / 60.0);
                 let change = world.take_change();
                 let start = Instant::now();
@@ -69,6 +81,9 @@ pub fn bench_render(
                     );
                 }
                 let ms = start.elapsed().as_secs_f64() * 1e3;
+                if f >= 2 && mode == "orbit" {
+                    psnrs.push(psnr_at_rest(&pool, world.scene(), inc.image(), config));
+                }
                 if f >= 2 {
                     times.push(ms);
                     traced += if mode == "full" {
@@ -86,12 +101,41 @@ pub fn bench_render(
                 ms_median: median(times),
                 frames,
                 traced: traced / f64::from(frames),
+                psnr: (!psnrs.is_empty()).then(|| median(psnrs)),
             };
             each(&row);
             rows.push(row);
         }
     }
     Ok(rows)
+}
+
+/// `home` turned by `deg` degrees about the vertical through what it looks at.
+fn turned(home: trace::Camera, deg: f32) -> trace::Camera {
+    let back = home.position - home.look_at;
+    trace::Camera {
+        position: home.look_at + glam::Quat::from_rotation_y(deg.to_radians()) * back,
+        ..home
+    }
+}
+
+/// The PSNR (dB) of `shown`, a moving view's frame of `scene`, against the
+/// frame at rest there (every pixel, at `config`'s anti-aliasing).
+fn psnr_at_rest(
+    pool: &rayon::ThreadPool,
+    scene: &trace::Scene,
+    shown: Option<&trace::Image>,
+    config: &Config,
+) -> f64 {
+    let r = &config.render;
+    let rest = trace::Scene {
+        samples: r.samples,
+        adaptive: r.adaptive.then_some(r.adaptive_threshold as f32),
+        coarse: 1,
+        ..scene.clone()
+    };
+    let still = pool.install(|| trace::render(&rest));
+    shown.map_or(0.0, |img| psnr(rmse(img, &still)))
 }
 
 /// `bench render`: the table (or JSON Lines) on `out`, a row as each finishes.
@@ -124,8 +168,11 @@ pub fn report(
             serde_json::to_string(row).expect("a row of numbers and names serializes")
         } else {
             let b = *base.get_or_insert(row.ms_median);
+            let psnr = row.psnr.map_or(String::new(), |p| {
+                format!("  PSNR {p:.1} dB against the frame at rest")
+            });
             format!(
-                "{:>7}  {:<11}  {:>8.2}  {:>15.2}x  {:>12.1}%",
+                "{:>7}  {:<11}  {:>8.2}  {:>15.2}x  {:>12.1}%{psnr}",
                 row.threads,
                 row.mode,
                 row.ms_median,

@@ -284,7 +284,7 @@ pub struct BenchRenderArgs {
     )]
     pub frames: i64,
     /// Which frames to time: every pixel traced afresh, only what motion changed,
-    /// or both.
+    /// both, or the view turning.
     #[arg(long, value_enum, default_value_t = BenchMode::Both)]
     pub mode: BenchMode,
     /// With --mode full: trace without these skips, to see what each earns
@@ -316,6 +316,10 @@ pub enum BenchMode {
     Incremental,
     /// Full, then incremental.
     Both,
+    /// The view turning a degree a frame around the cradle as it swings (a
+    /// right-drag): one ray per 2x2 block, as the window traces a moving view;
+    /// with the PSNR of those frames against the frame at rest.
+    Orbit,
 }
 
 /// `simulate`'s flags.

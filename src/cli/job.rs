@@ -182,6 +182,7 @@ impl Job {
             BenchMode::Full => vec!["full"],
             BenchMode::Incremental => vec!["incremental"],
             BenchMode::Both => vec!["full", "incremental"],
+            BenchMode::Orbit => vec!["orbit"],
         };
         let on = |s: Skip| !a.without.contains(&s);
         let options = crate::trace::RenderOptions {

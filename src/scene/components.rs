@@ -211,6 +211,16 @@ pub struct Quality {
     pub coarse: u32,
 }
 
+impl Quality {
+    /// While the view moves: one ray per 2x2 block of pixels (a quarter of
+    /// the rays, so a drag keeps up), no anti-aliasing.
+    pub const MOVING: Self = Self {
+        samples: 1,
+        adaptive: None,
+        coarse: 2,
+    };
+}
+
 /// The box the balls and strings stay in at every time, at their true
 /// thickness (min, max corners): extract widens it by what it adds to far
 /// strings, and hands it to the tracer as the scene's motion bounds.

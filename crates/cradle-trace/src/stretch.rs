@@ -1,79 +1,109 @@
 //! A picture stretched to a larger size by bilinear interpolation of its sRGB
 //! bytes, pixel centres to pixel centres: how a frame traced at one ray per
 //! block of pixels (`Scene::coarse`, while the view moves) fills the window.
-//! Each source row is first stretched across (16-bit, weights in 1/256), then
+//! Each source row is first stretched across (16-bit, weights in 1/16), then
 //! each output row blends the two source rows around it; rows in parallel.
 
 use super::color::Image;
 use rayon::prelude::*;
 
+/// Weights are in 1/16: a blend of two bytes then of two such sums fits in
+/// 16 bits (255 * 16 * 16 = 65,280), and a doubled picture's weights (1/4,
+/// 3/4) are exact.
+const ONE: u16 = 16;
+
 /// The two source positions around output position `i` of `out` (of `src`
-/// in all), and the second's weight in 1/256: the output pixel's centre
+/// in all), and the second's weight in 1/16: the output pixel's centre
 /// `(i + 0.5) * src / out - 0.5` in source pixels, clamped to the picture.
-fn taps(out: u32, src: u32) -> Vec<(usize, usize, u32)> {
+fn taps(out: u32, src: u32) -> Vec<(usize, usize, u16)> {
     let scale = f64::from(src) / f64::from(out);
     let last = f64::from(src - 1);
     (0..out)
         .map(|i| {
             let u = ((f64::from(i) + 0.5) * scale - 0.5).clamp(0.0, last);
             let i0 = u.floor();
-            let w = ((u - i0) * 256.0).round() as u32;
+            let w = ((u - i0) * f64::from(ONE)).round() as u16;
             let i0 = i0 as usize;
             (i0, (i0 + 1).min(src as usize - 1), w)
         })
         .collect()
 }
 
+/// A pixel's four bytes as four 16-bit lanes of a `u64`.
+fn lanes(p: [u8; 4]) -> u64 {
+    let x = u64::from(u32::from_le_bytes(p));
+    let x = (x | (x << 16)) & 0x0000_FFFF_0000_FFFF;
+    (x | (x << 8)) & 0x00FF_00FF_00FF_00FF
+}
+
+/// Source row `src` stretched across by the taps `xs`, times 16. Each pixel
+/// is blended as four 16-bit lanes of a `u64` at once (no lane passes
+/// 255 * 16, so none carries into the next).
+fn across(
+    src: &[[u8; 4]],
+    xs: &[(usize, usize, u16)],
+    spread: &mut Vec<u64>,
+    out: &mut [[u16; 4]],
+) {
+    spread.clear();
+    spread.extend(src.iter().map(|&p| lanes(p)));
+    for (o, &(a, b, w)) in out.iter_mut().zip(xs) {
+        let x = spread[a] * u64::from(ONE - w) + spread[b] * u64::from(w);
+        *o = [
+            x as u16,
+            (x >> 16) as u16,
+            (x >> 32) as u16,
+            (x >> 48) as u16,
+        ];
+    }
+}
+
+/// An output row: stretched rows `p` and `q` blended, `q` weighing `w` in
+/// 1/16, back to bytes (rounded).
+fn down(p: &[u16], q: &[u16], w: u16, out: &mut [u8]) {
+    let v = ONE - w;
+    for ((o, &p), &q) in out.iter_mut().zip(p).zip(q) {
+        *o = ((p * v + q * w + 128) >> 8) as u8;
+    }
+}
+
 /// `img` stretched to `width x height` (each at least the source's), rows in
 /// parallel on the current rayon pool where `parallel`.
 #[must_use]
 pub(crate) fn stretch(img: &Image, (width, height): (u32, u32), parallel: bool) -> Image {
-    let (sw, sh) = (img.width, img.height);
-    let (xs, ys) = (taps(width, sw), taps(height, sh));
-    let row_len = width as usize * 4;
+    let (xs, ys) = (taps(width, img.width), taps(height, img.height));
+    let (src, _) = img.rgba.as_chunks::<4>();
+    let src_rows: Vec<&[[u8; 4]]> = src.chunks_exact(img.width as usize).collect();
     // Each source row stretched across, times 256.
-    let across_row = |y: usize, out: &mut [u16]| {
-        let src = &img.rgba[y * sw as usize * 4..(y + 1) * sw as usize * 4];
-        for (o, &(a, b, w)) in out.chunks_exact_mut(4).zip(&xs) {
-            for c in 0..4 {
-                let (p, q) = (u32::from(src[a * 4 + c]), u32::from(src[b * 4 + c]));
-                o[c] = (p * (256 - w) + q * w) as u16;
-            }
-        }
-    };
-    let mut across = vec![0u16; row_len * sh as usize];
+    let mut wide = vec![[0u16; 4]; width as usize * img.height as usize];
     if parallel {
-        across
-            .par_chunks_exact_mut(row_len)
-            .enumerate()
-            .for_each(|(y, out)| across_row(y, out));
+        wide.par_chunks_exact_mut(width as usize)
+            .zip(src_rows.par_iter())
+            .for_each_init(Vec::new, |spread, (out, src)| across(src, &xs, spread, out));
     } else {
-        across
-            .chunks_exact_mut(row_len)
-            .enumerate()
-            .for_each(|(y, out)| across_row(y, out));
+        let mut spread = Vec::new();
+        for (out, src) in wide.chunks_exact_mut(width as usize).zip(&src_rows) {
+            across(src, &xs, &mut spread, out);
+        }
     }
     // Then each output row from the two source rows around it.
-    let across = &across;
-    let down_row = |y: usize, out: &mut [u8]| {
+    let wide: Vec<&[u16]> = wide
+        .chunks_exact(width as usize)
+        .map(<[[u16; 4]]>::as_flattened)
+        .collect();
+    let mut rgba = vec![0u8; width as usize * height as usize * 4];
+    let row = |(y, out): (usize, &mut [u8])| {
         let (a, b, w) = ys[y];
-        let (p, q) = (
-            &across[a * row_len..(a + 1) * row_len],
-            &across[b * row_len..(b + 1) * row_len],
-        );
-        for ((o, &p), &q) in out.iter_mut().zip(p).zip(q) {
-            *o = ((u32::from(p) * (256 - w) + u32::from(q) * w + 32_768) >> 16) as u8;
-        }
+        down(wide[a], wide[b], w, out);
     };
-    let mut rgba = vec![0u8; row_len * height as usize];
     if parallel {
-        rgba.par_chunks_exact_mut(row_len)
+        rgba.par_chunks_exact_mut(width as usize * 4)
             .enumerate()
-            .for_each(|(y, out)| down_row(y, out));
+            .for_each(row);
     } else {
-        rgba.chunks_exact_mut(row_len)
+        rgba.chunks_exact_mut(width as usize * 4)
             .enumerate()
-            .for_each(|(y, out)| down_row(y, out));
+            .for_each(row);
     }
     Image {
         width,
