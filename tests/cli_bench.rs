@@ -78,7 +78,10 @@ fn bench_render_orbit_reports_the_moving_views_psnr_against_the_frame_at_rest() 
     let psnr = v[0]["psnr"].as_f64().expect("orbit rows carry a PSNR");
     assert!((15.0..80.0).contains(&psnr), "PSNR {psnr} dB");
     let o = tiny_render(&["--mode", "full"]);
-    assert!(lines(&o)[0]["psnr"].is_null(), "only orbit rows have a PSNR");
+    assert!(
+        lines(&o)[0]["psnr"].is_null(),
+        "only orbit rows have a PSNR"
+    );
 }
 
 #[test]

@@ -3,7 +3,7 @@
 //! table. (The view's framing is tested in `view.rs`.)
 
 use glam::Vec3;
-use newtons_cradle::config::Config;
+use newtons_cradle::config::{Config, load_file};
 use newtons_cradle::scene::CradleWorld;
 use newtons_cradle::trace::{self, Light, Scene};
 
@@ -194,6 +194,17 @@ fn anti_aliased_incremental_frames_equal_full_renders_over_300_frames() {
             "{balls} balls: names {named:.2} of the pixels as changed"
         );
     }
+}
+
+#[test]
+fn the_realistic_cradles_incremental_frames_equal_full_renders() {
+    // Soft Hertz contact and drag: after the first impact every ball moves
+    // every frame, each ball's edges and mirror images with it.
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/presets/realistic.ron");
+    let mut config = load_file(std::path::Path::new(path)).expect("the preset loads");
+    (config.render.width, config.render.height) = (160, 80);
+    let (share, _) = incremental_swing_equals_full(&config, "the realistic cradle");
+    assert!(share > 0.0 && share < 0.5, "re-traces {share:.2}");
 }
 
 #[test]

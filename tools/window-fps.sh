@@ -7,17 +7,21 @@
 #   tools/window-fps.sh STATE [APP FLAGS...]
 #
 # STATE: swing (the swing alone), orbit (the right button held and the mouse
-# circling, about 60 moves a second), panel (the control panel open, Tab).
+# circling, about 60 moves a second), panel (the control panel open, Tab),
+# graphs (the graphs window open, G).
+# With LOG=FILE the app's log is kept there (with RUST_LOG=info,frame_cost=trace
+# it holds each frame's egui and present costs on the main thread).
 # Extra flags go to the app (say `--config assets/presets/realistic.ron` or
 # `--balls 200 --lift 20`). Uses target/release/newtons-cradle (or $BIN).
-# Prints `STATE: median N fps (lines: a b c ...)`.
+# Prints `STATE: median N fps (lines: a b c ...; trace ms: ...)`, the trace
+# times being the logged medians of each line's frames.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 bin="${BIN:-$root/target/release/newtons-cradle}"
 [ -x "$bin" ] || cargo build --release --quiet --manifest-path "$root/Cargo.toml"
-state="${1:?usage: window-fps.sh swing|orbit|panel [APP FLAGS...]}"
+state="${1:?usage: window-fps.sh swing|orbit|panel|graphs [APP FLAGS...]}"
 shift
-case "$state" in swing|orbit|panel) ;; *) echo "STATE: swing, orbit or panel" >&2; exit 2 ;; esac
+case "$state" in swing|orbit|panel|graphs) ;; *) echo "STATE: swing, orbit, panel or graphs" >&2; exit 2 ;; esac
 if [ -z "${DISPLAY:-}" ]; then
   exec "$root/tests/window/with-display.sh" "$0" "$state" "$@"
 fi
@@ -36,6 +40,7 @@ sleep 2
 # The assets start paused: Space runs the swing.
 xdotool key space
 [ "$state" = panel ] && xdotool key Tab
+[ "$state" = graphs ] && xdotool key g
 end=$((SECONDS + 11))
 if [ "$state" = orbit ]; then
   xdotool mousemove --window "$wid" 600 300 mousedown 3
@@ -52,7 +57,9 @@ else
 fi
 xdotool key Escape
 for _ in $(seq 1 50); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done
+[ -n "${LOG:-}" ] && cp "$work/app.log" "$LOG"
 fps=$(grep -o "[0-9.]* fps, trace" "$work/app.log" | awk '{print $1}' | tail -n +2)
 [ -n "$fps" ] || { echo "$state: no fps logged" >&2; tail -5 "$work/app.log" >&2; exit 1; }
 median=$(echo "$fps" | sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}')
-echo "$state: median $median fps (lines: $(echo $fps | tr '\n' ' '))"
+trace=$(grep -o "fps, trace [0-9.]* ms" "$work/app.log" | awk '{print $3}' | tail -n +2 | tr '\n' ' ')
+echo "$state: median $median fps (lines: $(echo $fps | tr '\n' ' '); trace ms: $trace)"

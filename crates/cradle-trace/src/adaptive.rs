@@ -309,13 +309,14 @@ fn final_row(
             rm.clear(x);
         }
     }
-    // So are edges whose other samples' segments come near a moved object
-    // (only edge pixels have cells in `rm`, so its blocks skip the others),
-    // and those whose base pixel, sample 0, was traced again.
-    if moved.dirty(y as usize, rm, false, touched) {
+    // So are edges whose base pixel, sample 0, was traced again, and those
+    // whose other samples' segments come near a moved object (only edge
+    // pixels have cells in `rm`, so its blocks skip the others; the pixels
+    // already taken are not tested again).
+    redo.extend(dirty.iter().map(|&x| x as usize).filter(|&x| is[x]));
+    if moved.dirty(y as usize, rm, (false, dirty), touched) {
         redo.extend(touched.iter().map(|&x| x as usize).filter(|&x| is[x]));
     }
-    redo.extend(dirty.iter().map(|&x| x as usize).filter(|&x| is[x]));
     let written = |(a, b): (u32, u32)| if a < b { [a, b] } else { [0, 0] };
     if redo.is_empty() && flips.is_empty() {
         return (0, written(span));

@@ -61,7 +61,7 @@ pub(crate) fn retrace_row(
         .map(|n| std::mem::take(&mut n.dirty))
         .unwrap_or_default();
     let mut traced = 0;
-    if moved.dirty(y as usize, rm, true, &mut dirty) {
+    if moved.dirty(y as usize, rm, (true, &[]), &mut dirty) {
         traced = retrace_dirty(frame, (y, row, rm), (&dirty, offsets), notes.as_deref_mut());
     }
     if let Some(n) = notes {

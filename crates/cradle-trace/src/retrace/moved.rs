@@ -51,14 +51,22 @@ impl Moved {
     /// needlessly is only traced again, so the frame keeps its bytes either
     /// way (the base layer, one centre sample, asks for it; the edge layer's
     /// samples lie anywhere in the pixel and each costs three, so it does not).
-    pub(crate) fn dirty(&self, y: usize, rm: &RowMotion, sure: bool, out: &mut Vec<u32>) -> bool {
+    /// The pixels `taken` (those the caller traces again anyway) are in `out`
+    /// as they are, their segments not tested.
+    pub(crate) fn dirty(
+        &self,
+        y: usize,
+        rm: &RowMotion,
+        (sure, taken): (bool, &[u32]),
+        out: &mut Vec<u32>,
+    ) -> bool {
         out.clear();
         if !self.reaches(y, rm) {
             return false;
         }
         Build::detect().run(Dirty {
             moved: self,
-            at: (y, rm, sure),
+            at: (y, rm, sure, taken),
             out,
         })
     }
@@ -72,12 +80,16 @@ impl Moved {
     fn dirty_with<S: Simd>(
         &self,
         s: S,
-        (y, rm, sure): (usize, &RowMotion, bool),
+        (y, rm, sure, taken): (usize, &RowMotion, bool, &[u32]),
         out: &mut Vec<u32>,
     ) -> bool {
         let n = rm.cells.len();
         let mut room = BitRoom::new();
         let mut hit = room.row(n);
+        // A pixel already in `hit` has its segments skipped.
+        for &x in taken {
+            hit.set(x as usize);
+        }
         let mut batch = Batch::default();
         let runs = self.spans.row(y);
         let sure = if sure { self.spans.sure_row(y) } else { &[] };
@@ -187,7 +199,7 @@ fn may_hold(runs: &[(u32, u32)], r: &mut usize, met: Cells, (x0, x1): (usize, us
 /// [`Moved::dirty`] after its row test, as a lane kernel.
 struct Dirty<'k> {
     moved: &'k Moved,
-    at: (usize, &'k RowMotion, bool),
+    at: (usize, &'k RowMotion, bool, &'k [u32]),
     out: &'k mut Vec<u32>,
 }
 

@@ -15,6 +15,7 @@ use crate::camera::CameraRays;
 use crate::geometry::Aabb;
 use crate::scene::{Light, Scene, Shape};
 use glam::Vec3;
+use rayon::prelude::*;
 
 mod ball;
 mod conic;
@@ -53,70 +54,30 @@ impl Spans {
     /// (`None`: a shape without a box, so every pixel).
     pub(crate) fn new(cam: &CameraRays, scene: &Scene, pieces: Option<&[Piece]>) -> Self {
         let (w, h) = scene.size;
-        let mut cover: Vec<(u32, u32, u32)> = Vec::new();
-        let mut sure: Vec<(u32, u32, u32)> = Vec::new();
-        let whole = [[0.0, w as f32], [0.0, h as f32]];
-        // Clamped to the picture (NaN to 0: `as` saturates).
-        let px = |v: f32, n: u32| (v.max(0.0) as u32).min(n);
-        let mut add = |r: Option<Region>, sure_ok: bool| match r.unwrap_or(Region::Box(whole)) {
-            Region::Box([[x0, x1], [y0, y1]]) => {
-                let (x0, x1) = (px((x0 - PAD_PX).floor(), w), px((x1 + PAD_PX).ceil(), w));
-                let (y0, y1) = (px((y0 - PAD_PX).floor(), h), px((y1 + PAD_PX).ceil(), h));
-                if x0 < x1 {
-                    cover.extend((y0..y1).map(|y| (y, x0, x1)));
-                }
+        let whole = Region::Box([[0.0, w as f32], [0.0, h as f32]]);
+        // Each piece under each map, rasterized in parallel (a frame has
+        // about a hundred; the runs are sorted by row after).
+        let rows = match pieces {
+            None => {
+                let mut rows = Rows::default();
+                rows.add(whole, false, (w, h));
+                rows
             }
-            Region::Ellipse(conic, [[x0, x1], [y0, y1]]) => {
-                // Per row, the ellipse's span in the row's band, within the box.
-                for y in px((y0 - PAD_PX).floor(), h)..px((y1 + PAD_PX).ceil(), h) {
-                    let band = (y as f32 - PAD_PX, y as f32 + 1.0 + PAD_PX);
-                    if let Some((l, r)) = conic.band_x(band) {
-                        let (l, r) = (l.max(x0) - PAD_PX, r.min(x1) + PAD_PX);
-                        let (l, r) = (px(l.floor(), w), px(r.ceil(), w));
-                        if l < r {
-                            cover.push((y, l, r));
-                        }
-                    }
-                    // The pixels whose centre lies inside the ellipse at the
-                    // row's centre line by more than SURE_PX.
-                    let mid = y as f32 + 0.5;
-                    if let Some((l, r)) = conic.band_x((mid, mid)).filter(|_| sure_ok) {
-                        let (l, r) = (l.max(x0) + SURE_PX - 0.5, r.min(x1) - SURE_PX - 0.5);
-                        let (l, r) = (px(l.ceil(), w), px(r.floor() + 1.0, w));
-                        if l < r {
-                            sure.push((y, l, r));
-                        }
-                    }
-                }
-            }
-            Region::Quad(q) => {
-                // Padded already; per row, where the quad crosses the row's band.
-                let (y0, y1) = q
-                    .iter()
-                    .fold((f32::MAX, f32::MIN), |(a, b), p| (a.min(p.1), b.max(p.1)));
-                for y in px(y0.floor(), h)..px(y1.ceil(), h) {
-                    if let Some((x0, x1)) = band_x(&q, (y as f32, y as f32 + 1.0)) {
-                        let (x0, x1) = (px(x0.floor(), w), px(x1.ceil(), w));
-                        if x0 < x1 {
-                            cover.push((y, x0, x1));
-                        }
-                    }
-                }
-            }
-        };
-        match pieces {
-            None => add(None, false),
             Some(pieces) => {
                 let maps = maps(scene);
-                for piece in pieces {
-                    for m in &maps {
-                        add(piece.region(cam, m), m.sure());
-                    }
-                }
+                pieces
+                    .par_iter()
+                    .flat_map_iter(|piece| maps.iter().map(move |m| (piece, m)))
+                    .fold(Rows::default, |mut rows, (piece, m)| {
+                        let r = piece.region(cam, m).unwrap_or(whole);
+                        rows.add(r, m.sure(), (w, h));
+                        rows
+                    })
+                    .reduce(Rows::default, Rows::join)
             }
-        }
-        let (runs, start) = merged(cover, h);
-        let (sure, sure_start) = merged(sure, h);
+        };
+        let (runs, start) = merged(rows.cover, h);
+        let (sure, sure_start) = merged(rows.sure, h);
         Self {
             runs,
             start,
@@ -151,24 +112,107 @@ fn of_row<'a>(runs: &'a [(u32, u32)], start: &[u32], y: usize) -> &'a [(u32, u32
     }
 }
 
-/// The rows' runs of `cover` (row, x0, x1) merged where they meet, and where
-/// each row's begin (`h + 1` entries).
-fn merged(mut cover: Vec<(u32, u32, u32)>, h: u32) -> (Vec<(u32, u32)>, Vec<u32>) {
-    cover.sort_unstable();
-    let mut runs: Vec<(u32, u32)> = Vec::with_capacity(cover.len());
-    let mut start = vec![0u32; h as usize + 1];
-    let mut last_y = u32::MAX;
-    for (y, x0, x1) in cover {
-        match runs.last_mut() {
-            Some(run) if y == last_y && x0 <= run.1 => run.1 = run.1.max(x1),
-            _ => runs.push((x0, x1)),
+/// Pixels `x0..x1` of rows `y` as `(y, x0, x1)`, in no order: what the
+/// regions cover, and their sure parts ([`Spans::sure_row`]).
+#[derive(Debug, Default)]
+struct Rows {
+    cover: Vec<(u32, u32, u32)>,
+    sure: Vec<(u32, u32, u32)>,
+}
+
+impl Rows {
+    /// Adds region `r` of a `w` x `h` picture (with its sure part if
+    /// `sure_ok`), padded by [`PAD_PX`], clamped to the picture.
+    fn add(&mut self, r: Region, sure_ok: bool, (w, h): (u32, u32)) {
+        // Clamped to the picture (NaN to 0: `as` saturates).
+        let px = |v: f32, n: u32| (v.max(0.0) as u32).min(n);
+        match r {
+            Region::Box([[x0, x1], [y0, y1]]) => {
+                let (x0, x1) = (px((x0 - PAD_PX).floor(), w), px((x1 + PAD_PX).ceil(), w));
+                let (y0, y1) = (px((y0 - PAD_PX).floor(), h), px((y1 + PAD_PX).ceil(), h));
+                if x0 < x1 {
+                    self.cover.extend((y0..y1).map(|y| (y, x0, x1)));
+                }
+            }
+            Region::Ellipse(conic, [[x0, x1], [y0, y1]]) => {
+                // Per row, the ellipse's span in the row's band, within the box.
+                for y in px((y0 - PAD_PX).floor(), h)..px((y1 + PAD_PX).ceil(), h) {
+                    let band = (y as f32 - PAD_PX, y as f32 + 1.0 + PAD_PX);
+                    if let Some((l, r)) = conic.band_x(band) {
+                        let (l, r) = (l.max(x0) - PAD_PX, r.min(x1) + PAD_PX);
+                        let (l, r) = (px(l.floor(), w), px(r.ceil(), w));
+                        if l < r {
+                            self.cover.push((y, l, r));
+                        }
+                    }
+                    // The pixels whose centre lies inside the ellipse at the
+                    // row's centre line by more than SURE_PX.
+                    let mid = y as f32 + 0.5;
+                    if let Some((l, r)) = conic.band_x((mid, mid)).filter(|_| sure_ok) {
+                        let (l, r) = (l.max(x0) + SURE_PX - 0.5, r.min(x1) - SURE_PX - 0.5);
+                        let (l, r) = (px(l.ceil(), w), px(r.floor() + 1.0, w));
+                        if l < r {
+                            self.sure.push((y, l, r));
+                        }
+                    }
+                }
+            }
+            Region::Quad(q) => {
+                // Padded already; per row, where the quad crosses the row's band.
+                let (y0, y1) = q
+                    .iter()
+                    .fold((f32::MAX, f32::MIN), |(a, b), p| (a.min(p.1), b.max(p.1)));
+                for y in px(y0.floor(), h)..px(y1.ceil(), h) {
+                    if let Some((x0, x1)) = band_x(&q, (y as f32, y as f32 + 1.0)) {
+                        let (x0, x1) = (px(x0.floor(), w), px(x1.ceil(), w));
+                        if x0 < x1 {
+                            self.cover.push((y, x0, x1));
+                        }
+                    }
+                }
+            }
         }
-        last_y = y;
-        start[y as usize + 1] = runs.len() as u32;
     }
-    // Rows without runs start where the row before ends.
-    for y in 1..start.len() {
-        start[y] = start[y].max(start[y - 1]);
+
+    /// Both sets of rows in one.
+    fn join(mut self, mut other: Self) -> Self {
+        self.cover.append(&mut other.cover);
+        self.sure.append(&mut other.sure);
+        self
+    }
+}
+
+/// The rows' runs of `cover` (row, x0, x1; rows below `h`) merged where they
+/// meet, and where each row's begin (`h + 1` entries). Sorted by row with a
+/// count per row, then each row's few by `x0`.
+fn merged(cover: Vec<(u32, u32, u32)>, h: u32) -> (Vec<(u32, u32)>, Vec<u32>) {
+    let h = h as usize;
+    let mut at = vec![0u32; h + 1];
+    for &(y, _, _) in &cover {
+        at[y as usize + 1] += 1;
+    }
+    for y in 1..=h {
+        at[y] += at[y - 1];
+    }
+    let mut sorted = vec![(0u32, 0u32); cover.len()];
+    let mut next = at.clone();
+    for &(y, x0, x1) in &cover {
+        sorted[next[y as usize] as usize] = (x0, x1);
+        next[y as usize] += 1;
+    }
+    let mut runs: Vec<(u32, u32)> = Vec::with_capacity(cover.len());
+    let mut start = vec![0u32; h + 1];
+    for y in 0..h {
+        let row = &mut sorted[at[y] as usize..at[y + 1] as usize];
+        row.sort_unstable();
+        let first = runs.len();
+        for &(x0, x1) in row.iter() {
+            match runs[first..].last_mut() {
+                Some(run) if x0 <= run.1 => run.1 = run.1.max(x1),
+                _ => runs.push((x0, x1)),
+            }
+        }
+        start[y + 1] = runs.len() as u32;
     }
     (runs, start)
 }

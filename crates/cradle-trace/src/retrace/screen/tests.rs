@@ -2,7 +2,7 @@
 //! holds its image and no more, and so do its ellipse's rows; a row's runs
 //! hold the pixels that see it.
 
-use super::{Conic, Map, Piece, Spans, ball_box, maps};
+use super::{Conic, Map, Piece, Spans, ball_box, maps, merged};
 use crate::camera::CameraRays;
 use crate::scene::{Camera, Light, Material, Object, Scene, Shape};
 use glam::Vec3;
@@ -299,4 +299,17 @@ fn a_slanted_rod_shows_as_a_thin_band_that_holds_it() {
         (inside as f32) < 0.25 * boxed,
         "{inside} pixels in runs, the box {boxed}"
     );
+}
+
+#[test]
+fn merged_runs_join_where_they_meet_row_by_row_whatever_the_order() {
+    // Row 2: 5..9 and 8..12 overlap, 12..14 touches; 20..22 stands apart.
+    // Row 0: one run; row 1 and row 3 none.
+    let cover = vec![(2, 20, 22), (2, 8, 12), (0, 1, 3), (2, 12, 14), (2, 5, 9)];
+    let (runs, start) = merged(cover, 4);
+    assert_eq!(runs, [(1, 3), (5, 14), (20, 22)]);
+    assert_eq!(start, [0, 1, 1, 3, 3]);
+    let (runs, start) = merged(Vec::new(), 2);
+    assert!(runs.is_empty());
+    assert_eq!(start, [0, 0, 0]);
 }
