@@ -131,9 +131,11 @@ impl App {
         let Some(surface) = &mut self.surface else {
             return;
         };
+        let (t_step, cpu_step) = (std::time::Instant::now(), thread_cpu());
         if surface.visible() {
-            self.session.step(std::time::Instant::now());
+            self.session.step(t_step);
         }
+        let (step, cpu_step) = (t_step.elapsed(), thread_cpu() - cpu_step);
         let panel = self.session.egui_open();
         let t0 = std::time::Instant::now();
         let cpu0 = thread_cpu();
@@ -142,10 +144,12 @@ impl App {
         }
         let prep = t0.elapsed();
         let cpu_prep = thread_cpu() - cpu0;
-        let overlay = self.session.overlay(std::time::Instant::now());
+        let t_up = std::time::Instant::now();
+        let overlay = self.session.overlay(t_up);
         surface.upload(self.session.image(), self.session.changes(), &overlay);
         // The next frame traces while this one is drawn.
         self.session.launch();
+        let up = t_up.elapsed();
         let t1 = std::time::Instant::now();
         let cpu1 = thread_cpu();
         let shows = surface.visible();
@@ -159,15 +163,20 @@ impl App {
         if let Err(e) = drawn {
             self.fail(event_loop, e);
         }
-        // The main thread's cost of the egui frame and of presenting, in wall
-        // time and in its own CPU time (a software renderer rasterises on
-        // threads of its own, which the wall time waits for):
-        // `RUST_LOG=info,frame_cost=trace`.
+        // The main thread's cost of the step (the physics, the scene, taking
+        // the last trace back: it waits for it), of the egui frame, of the
+        // upload (the picture's changes and the HUD into the framebuffer, and
+        // launching the next trace) and of presenting, in wall time and in its own CPU time (a software
+        // renderer rasterises on threads of its own, which the wall time
+        // waits for): `RUST_LOG=info,frame_cost=trace`.
         tracing::trace!(
             target: "frame_cost",
-            "egui {:.3} ms (cpu {:.3}), present {:.3} ms (cpu {:.3})",
+            "step {:.3} ms (cpu {:.3}), egui {:.3} ms (cpu {:.3}), upload {:.3} ms, present {:.3} ms (cpu {:.3})",
+            step.as_secs_f64() * 1e3,
+            cpu_step * 1e3,
             prep.as_secs_f64() * 1e3,
             cpu_prep * 1e3,
+            up.as_secs_f64() * 1e3,
             t1.elapsed().as_secs_f64() * 1e3,
             (thread_cpu() - cpu1) * 1e3
         );
