@@ -166,9 +166,9 @@ impl App {
         // The main thread's cost of the step (the physics, the scene, taking
         // the last trace back: it waits for it), of the egui frame, of the
         // upload (the picture's changes and the HUD into the framebuffer, and
-        // launching the next trace) and of presenting, in wall time and in its own CPU time (a software
-        // renderer rasterises on threads of its own, which the wall time
-        // waits for): `RUST_LOG=info,frame_cost=trace`.
+        // launching the next trace) and of presenting, in wall time and in
+        // its own CPU time (a software renderer rasterises on threads of its
+        // own, which the wall time waits for): `RUST_LOG=info,frame_cost=trace`.
         tracing::trace!(
             target: "frame_cost",
             "step {:.3} ms (cpu {:.3}), egui {:.3} ms (cpu {:.3}), upload {:.3} ms, present {:.3} ms (cpu {:.3})",

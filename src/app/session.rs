@@ -21,27 +21,6 @@ use std::time::Instant;
 /// instead of jumping ahead.
 pub const MAX_FRAME_DT: f64 = 0.25;
 
-/// What the HUD shows; H or F1 steps through them.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum HudMode {
-    /// State, timing, energy error, and a hint.
-    Status,
-    /// The status and the key list.
-    Help,
-    /// Nothing (errors still show).
-    Off,
-}
-
-impl HudMode {
-    fn next(self) -> Self {
-        match self {
-            Self::Status => Self::Help,
-            Self::Help => Self::Off,
-            Self::Off => Self::Status,
-        }
-    }
-}
-
 /// What the window must do after an action the session cannot do itself.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Effect {
@@ -274,13 +253,8 @@ impl Session {
 
     /// Traces at the config's anti-aliasing from the next frame on.
     fn apply_quality(&mut self) {
-        let r = &self.config.render;
-        let adaptive = r.adaptive.then_some(r.adaptive_threshold as f32);
-        self.world.set_quality(Quality {
-            samples: r.samples,
-            adaptive,
-            coarse: 1,
-        });
+        self.world
+            .set_quality(Quality::at_rest(&self.config.render));
     }
 
     /// Hidden time does not count: the swing resumes where it stopped. No click
@@ -794,7 +768,7 @@ mod tracer;
 mod view;
 
 use status::{Energy, Motion, Readout};
-pub use status::{HudLine, Overlay};
+pub use status::{HudLine, HudMode, Overlay};
 use view::Viewpoint;
 
 #[cfg(test)]

@@ -127,13 +127,8 @@ fn psnr_at_rest(
     shown: Option<&trace::Image>,
     config: &Config,
 ) -> f64 {
-    let r = &config.render;
-    let rest = trace::Scene {
-        samples: r.samples,
-        adaptive: r.adaptive.then_some(r.adaptive_threshold as f32),
-        coarse: 1,
-        ..scene.clone()
-    };
+    let mut rest = scene.clone();
+    Quality::at_rest(&config.render).set_on(&mut rest);
     let still = pool.install(|| trace::render(&rest));
     shown.map_or(0.0, |img| psnr(rmse(img, &still)))
 }

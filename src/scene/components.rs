@@ -219,6 +219,23 @@ impl Quality {
         adaptive: None,
         coarse: 2,
     };
+
+    /// At rest: the asset's samples and adaptive threshold, every pixel traced.
+    #[must_use]
+    pub fn at_rest(r: &crate::config::RenderConfig) -> Self {
+        Self {
+            samples: r.samples,
+            adaptive: r.adaptive.then_some(r.adaptive_threshold as f32),
+            coarse: 1,
+        }
+    }
+
+    /// Sets `scene`'s sampling to this.
+    pub fn set_on(self, scene: &mut trace::Scene) {
+        scene.samples = self.samples;
+        scene.adaptive = self.adaptive;
+        scene.coarse = self.coarse;
+    }
 }
 
 /// The box the balls and strings stay in at every time, at their true

@@ -4,6 +4,7 @@
 //! or for a long row the view along it (`long_row`). Spawning stores the scene;
 //! `extract` then only copies transforms.
 
+use super::components::Quality;
 use super::long_row::along_the_row;
 use super::view::{FIT_SIDE, camera, f32x3, fit_region, frame_corners, light, motion_bounds};
 use crate::config::{CameraConfig, Config};
@@ -122,6 +123,7 @@ fn pixel_size(cam: &CameraConfig, h: u32, distance: f64) -> f64 {
 #[must_use]
 pub fn static_scene(config: &Config) -> trace::Scene {
     let r = &config.render;
+    let q = Quality::at_rest(r);
     trace::Scene {
         objects: Vec::new(),
         lights: config.lights.iter().map(light).collect(),
@@ -129,9 +131,9 @@ pub fn static_scene(config: &Config) -> trace::Scene {
         background: f32x3(r.background),
         size: (r.width, r.height),
         max_depth: r.max_depth,
-        samples: r.samples,
-        adaptive: r.adaptive.then_some(r.adaptive_threshold as f32),
+        samples: q.samples,
+        adaptive: q.adaptive,
         motion_bounds: Some(motion_bounds(config)),
-        coarse: 1,
+        coarse: q.coarse,
     }
 }

@@ -119,9 +119,7 @@ pub fn apply_view(view: Res<View>, quality: Res<Quality>, mut flat: ResMut<FlatS
     if view.is_changed() || quality.is_changed() {
         let flat = &mut *flat;
         flat.scene.camera = view.0;
-        flat.scene.samples = quality.samples;
-        flat.scene.adaptive = quality.adaptive;
-        flat.scene.coarse = quality.coarse;
+        quality.set_on(&mut flat.scene);
         flat.change.merge(trace::Change::Any);
     }
 }

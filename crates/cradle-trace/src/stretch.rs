@@ -74,7 +74,7 @@ pub(crate) fn stretch(img: &Image, (width, height): (u32, u32), parallel: bool) 
     let (xs, ys) = (taps(width, img.width), taps(height, img.height));
     let (src, _) = img.rgba.as_chunks::<4>();
     let src_rows: Vec<&[[u8; 4]]> = src.chunks_exact(img.width as usize).collect();
-    // Each source row stretched across, times 256.
+    // Each source row stretched across, times 16.
     let mut wide = vec![[0u16; 4]; width as usize * img.height as usize];
     if parallel {
         wide.par_chunks_exact_mut(width as usize)

@@ -1,8 +1,28 @@
 //! The HUD's text from the session's facts: run state, rates, time, counts,
 //! energy, momentum, help, and any config error ([`Readout::lines`]), and what
-//! the window draws over the picture ([`Overlay`]).
+//! the window draws over the picture ([`Overlay`]); which of them shows
+//! ([`HudMode`]).
 
-use super::HudMode;
+/// What the HUD shows; H or F1 steps through them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum HudMode {
+    /// State, timing, energy error, and a hint.
+    Status,
+    /// The status and the key list.
+    Help,
+    /// Nothing (errors still show).
+    Off,
+}
+
+impl HudMode {
+    pub(super) fn next(self) -> Self {
+        match self {
+            Self::Status => Self::Help,
+            Self::Help => Self::Off,
+            Self::Off => Self::Status,
+        }
+    }
+}
 
 /// A line of HUD text and its colour.
 pub type HudLine = (String, [u8; 3]);
