@@ -10,7 +10,7 @@
 # circling, about 60 moves a second), panel (the control panel open, Tab),
 # graphs (the graphs window open, G).
 # With LOG=FILE the app's log is kept there (with RUST_LOG=info,frame_cost=trace
-# it holds each frame's egui and present costs on the main thread).
+# it holds each frame's step, egui, upload and present costs on the main thread).
 # Extra flags go to the app (say `--config assets/presets/realistic.ron` or
 # `--balls 200 --lift 20`). Uses target/release/newtons-cradle (or $BIN).
 # Prints `STATE: median N fps (lines: a b c ...; trace ms: ...)`, the trace

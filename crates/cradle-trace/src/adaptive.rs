@@ -309,11 +309,10 @@ fn final_row(
             rm.clear(x);
         }
     }
-    // So are edges whose base pixel, sample 0, was traced again, and those
-    // whose other samples' segments come near a moved object (only edge
-    // pixels have cells in `rm`, so its blocks skip the others; the pixels
-    // already taken are not tested again).
-    redo.extend(dirty.iter().map(|&x| x as usize).filter(|&x| is[x]));
+    // So are edges whose base pixel, sample 0, was traced again (taken as
+    // they are) and those whose other samples' segments come near a moved
+    // object (only edge pixels have cells in `rm`, so its blocks skip the
+    // others).
     if moved.dirty(y as usize, rm, (false, dirty), touched) {
         redo.extend(touched.iter().map(|&x| x as usize).filter(|&x| is[x]));
     }

@@ -51,8 +51,8 @@ impl Moved {
     /// needlessly is only traced again, so the frame keeps its bytes either
     /// way (the base layer, one centre sample, asks for it; the edge layer's
     /// samples lie anywhere in the pixel and each costs three, so it does not).
-    /// The pixels `taken` (those the caller traces again anyway) are in `out`
-    /// as they are, their segments not tested.
+    /// The pixels `taken` (ascending: those the caller traces again anyway)
+    /// are in `out` as they are, their segments not tested.
     pub(crate) fn dirty(
         &self,
         y: usize,
@@ -62,7 +62,8 @@ impl Moved {
     ) -> bool {
         out.clear();
         if !self.reaches(y, rm) {
-            return false;
+            out.extend_from_slice(taken);
+            return !out.is_empty();
         }
         Build::detect().run(Dirty {
             moved: self,
