@@ -174,27 +174,30 @@ fn moved(
         hi: Vec3::NEG_INFINITY,
         ..Moved::default()
     };
-    let shapes = list
+    let mut pairs = Vec::new();
+    let mut pieces = Vec::new();
+    // The moved balls where they were and where they are: a segment well
+    // through one of each is left out (`NearSet::with_balls`), as a shadow ray
+    // blocked before and after.
+    let mut balls = [Vec::new(), Vec::new()];
+    for (was, is) in list
         .iter()
         .map(|&i| (&before[i], &after.objects[i].shape))
         .filter(|(a, b)| a != b)
-        .flat_map(|(a, b)| [a, b]);
-    let mut near = Vec::new();
-    let mut pieces = Vec::new();
-    // The moved balls where they were (even `i`) and where they are (odd): a
-    // segment well through one of each is left out (`NearSet::with_balls`), as
-    // a shadow ray blocked before and after.
-    let mut balls = [Vec::new(), Vec::new()];
-    for (i, s) in shapes.enumerate() {
-        let cells = shape_cells(grid, s);
-        out.cells |= cells;
-        if let super::scene::Shape::Sphere { centre, radius } = *s {
-            balls[i % 2].push((centre, radius));
-        }
-        if let Some(n) = Near::of(s) {
-            (out.lo, out.hi) = (out.lo.min(n.lo()), out.hi.max(n.hi()));
-            near.push((cells, n));
+    {
+        let both = [was, is].map(|s| (shape_cells(grid, s), Near::of(s)));
+        for (side, s) in [was, is].into_iter().enumerate() {
+            out.cells |= both[side].0;
+            if let super::scene::Shape::Sphere { centre, radius } = *s {
+                balls[side].push((centre, radius));
+            }
             near_pieces(s, &mut pieces);
+        }
+        if let [(c0, Some(n0)), (c1, Some(n1))] = both {
+            for n in [n0, n1] {
+                (out.lo, out.hi) = (out.lo.min(n.lo()), out.hi.max(n.hi()));
+            }
+            pairs.push([(c0, n0), (c1, n1)]);
         } else {
             // A moving plane (none is): every segment may meet it.
             out.cells = Cells::MAX;
@@ -202,7 +205,7 @@ fn moved(
         }
     }
     let [b0, b1] = balls;
-    out.near = NearSet::new(near).with_balls(b0, b1);
+    out.near = NearSet::moved(pairs).with_balls(b0, b1);
     out.spans = Spans::new(cam, after, (!out.coarse).then_some(&pieces[..]));
     out
 }

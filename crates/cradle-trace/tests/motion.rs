@@ -184,3 +184,60 @@ fn a_segment_left_out_passes_well_through_the_ball_where_it_was_and_is() {
     // Some segments were left out (each counted per ball, portable build).
     assert!(left_out > 100, "{left_out} left out");
 }
+
+#[test]
+fn a_moved_object_tested_as_one_shape_around_both_finds_what_its_two_shapes_find() {
+    let mut rng = Lcg(11);
+    let mut taken = 0;
+    // Moves from a hundredth of a millimetre to 3 cm: small ones give a shape
+    // around both, the largest two shapes.
+    for (i, step) in [1e-5_f32, 1e-3, 4e-3, 3e-2]
+        .into_iter()
+        .cycle()
+        .take(40)
+        .enumerate()
+    {
+        let dir = (rng.point() * 5.0).normalize_or(Vec3::X);
+        let c0 = rng.point() * 0.25;
+        let c1 = c0 + dir * step;
+        let pivot = c0 + Vec3::new(0.03, 0.16, 0.05);
+        let ball = |centre| Shape::Sphere {
+            centre,
+            radius: 0.02,
+        };
+        let string = |end| Shape::Cylinder {
+            a: pivot,
+            b: end,
+            radius: 0.0006,
+        };
+        let shapes = [ball(c0), ball(c1), string(c0), string(c1)];
+        // Each shape with its own cell; a segment's cells are drawn at random.
+        let nears: Vec<_> = shapes
+            .iter()
+            .zip([1, 2, 4, 8])
+            .map(|(s, cell)| (cell, Near::of(s).unwrap()))
+            .collect();
+        let one_by_one = NearSet::new(nears.clone());
+        let paired = NearSet::moved(vec![[nears[0], nears[1]], [nears[2], nears[3]]]);
+        for j in 0..500 {
+            // Most segments aimed near the ball or the string.
+            let p = c0 + rng.point() * 0.5;
+            let aim = if j % 2 == 0 {
+                c1
+            } else {
+                pivot.lerp(c0, rng.next())
+            };
+            let q = p + (aim + rng.point() * 0.05 - p) * (0.5 + rng.next());
+            let s = Seg { a: p, b: q };
+            let cells = 1 + (rng.next() * 15.0) as u128;
+            for portable in [false, true] {
+                force_portable(portable);
+                let want = one_by_one.meets(&s, cells);
+                assert_eq!(paired.meets(&s, cells), want, "move {i}, segment {j}");
+                taken += usize::from(want);
+            }
+        }
+    }
+    force_portable(false);
+    assert!(taken > 2000, "{taken} segments met a shape");
+}

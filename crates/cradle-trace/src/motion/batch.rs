@@ -78,8 +78,7 @@ impl Batch {
         let tiny = s.splat(1e-12);
         // Worked out when first needed: the lanes left out (`NearSet::with_balls`).
         let mut out: Option<u8> = None;
-        for (j, (shape_cells, near)) in set.nears().iter().enumerate() {
-            let k = set.lanes(j);
+        for (k, members) in set.groups() {
             let inside = S::le(s.splat(k.lo.x), hi[0])
                 & S::le(s.splat(k.lo.y), hi[1])
                 & S::le(s.splat(k.lo.z), hi[2])
@@ -131,7 +130,11 @@ impl Batch {
                     a: at(&self.p),
                     b: at(&self.q),
                 };
-                if !hit.has(who as usize) && shape_cells & self.cells[i] != 0 && near.meets(&seg) {
+                if !hit.has(who as usize)
+                    && members
+                        .iter()
+                        .any(|(cells, near)| cells & self.cells[i] != 0 && near.meets(&seg))
+                {
                     hit.set(who as usize);
                 }
             }
@@ -186,9 +189,9 @@ fn left_out<S: Simd>(s: S, set: &NearSet, (p, q, d, d2): (&L3<S>, &L3<S>, &L3<S>
     through[0] & through[1]
 }
 
-/// A moved shape's numbers for [`Batch::test`]: its box, a ball's centre or a
-/// string's first end (`a`), a string's axis (`e`, zero for a ball), and its
-/// grown radius squared.
+/// A moved shape's numbers for [`Batch::test`], or those of a shape that
+/// holds a group of them: its box, a ball's centre or a string's first end
+/// (`a`), a string's axis (`e`, zero for a ball), and its grown radius squared.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Lanes {
     pub(crate) lo: Vec3,
@@ -199,42 +202,118 @@ pub(crate) struct Lanes {
     pub(crate) ball: bool,
 }
 
+impl Lanes {
+    /// The numbers of `n`.
+    fn of(n: &Near) -> Self {
+        let (a, e, r, ball) = match n.shape {
+            NearShape::Sphere(c, r) => (c, Vec3::ZERO, r, true),
+            NearShape::Capsule(a, b, r) => (a, b - a, r, false),
+        };
+        Self {
+            lo: n.lo,
+            hi: n.hi,
+            a,
+            e,
+            r2: r * r,
+            ball,
+        }
+    }
+
+    /// A shape of the same kind that holds both `was` and `is` (`None` when
+    /// they are of two kinds): for two balls, the ball around the midpoint of
+    /// their centres whose radius is theirs and half the distance between
+    /// the centres; for two capsules, the capsule between the midpoints of
+    /// their ends whose radius is theirs and half the larger distance between
+    /// matching ends (a point of either axis lies that near the axis between
+    /// the midpoints). The radius is grown by a hundredth of a percent against
+    /// the rounding of these sums (and by 1e-6 m); the box holds both boxes.
+    /// Two shapes farther apart than twice their radius stay two (`None`): a
+    /// shape around both would send the batch test's segments to the exact
+    /// test more often than it saves.
+    fn around(was: &Near, is: &Near) -> Option<Self> {
+        const GROW: f32 = 1.0001;
+        let (a, e, r, half, ball) = match (was.shape, is.shape) {
+            (NearShape::Sphere(c0, r0), NearShape::Sphere(c1, r1)) => (
+                c0.midpoint(c1),
+                Vec3::ZERO,
+                r0.max(r1),
+                0.5 * c0.distance(c1),
+                true,
+            ),
+            (NearShape::Capsule(a0, b0, r0), NearShape::Capsule(a1, b1, r1)) => {
+                let (a, b) = (a0.midpoint(a1), b0.midpoint(b1));
+                let half = 0.5 * a0.distance(a1).max(b0.distance(b1));
+                (a, b - a, r0.max(r1), half, false)
+            }
+            _ => return None,
+        };
+        if half > 2.0 * r {
+            return None;
+        }
+        let r = (r + half) * GROW + 1e-6;
+        Some(Self {
+            lo: was.lo.min(is.lo),
+            hi: was.hi.max(is.hi),
+            a,
+            e,
+            r2: r * r,
+            ball,
+        })
+    }
+}
+
 /// The moved shapes, each with its motion cells, for testing segments against
 /// them all ([`NearSet::meets`], and a row's segments eight at a time,
-/// [`Batch`]).
+/// [`Batch`]). The batch test takes them in groups: a moved object where it
+/// was and where it is, in one shape that holds both ([`NearSet::moved`]).
 #[derive(Debug, Clone, Default)]
 pub struct NearSet {
     nears: Vec<(Cells, Near)>,
-    /// Each shape's numbers for the batch test.
-    lanes: Vec<Lanes>,
+    /// Each group's numbers for the batch test, and its shapes in `nears`.
+    groups: Vec<(Lanes, std::ops::Range<usize>)>,
     /// The moved balls where they were and where they are: centre and radius.
     balls: [Vec<(Vec3, f32)>; 2],
 }
 
 impl NearSet {
-    /// The set of `nears`, each with its cells.
+    /// The set of `nears`, each with its cells, each a group of its own.
     #[must_use]
     pub fn new(nears: Vec<(Cells, Near)>) -> Self {
-        let lanes = nears
+        let groups = nears
             .iter()
-            .map(|(_, n)| {
-                let (a, e, r, ball) = match n.shape {
-                    NearShape::Sphere(c, r) => (c, Vec3::ZERO, r, true),
-                    NearShape::Capsule(a, b, r) => (a, b - a, r, false),
-                };
-                Lanes {
-                    lo: n.lo,
-                    hi: n.hi,
-                    a,
-                    e,
-                    r2: r * r,
-                    ball,
-                }
-            })
+            .enumerate()
+            .map(|(i, (_, n))| (Lanes::of(n), i..i + 1))
             .collect();
         Self {
             nears,
-            lanes,
+            groups,
+            balls: Default::default(),
+        }
+    }
+
+    /// The set of moved objects, each where it was and where it is with its
+    /// cells: the batch test takes each pair as one shape that holds both
+    /// ([`Lanes::around`]), then tests the segments it leaves against each of
+    /// the two. What the set finds is what [`Self::new`] of the shapes one by
+    /// one finds; the batch test has half as many shapes to test.
+    #[must_use]
+    pub fn moved(pairs: Vec<[(Cells, Near); 2]>) -> Self {
+        let mut nears = Vec::with_capacity(2 * pairs.len());
+        let mut groups = Vec::with_capacity(pairs.len());
+        for [was, is] in pairs {
+            let i = nears.len();
+            match Lanes::around(&was.1, &is.1) {
+                Some(both) => groups.push((both, i..i + 2)),
+                None => {
+                    groups.push((Lanes::of(&was.1), i..i + 1));
+                    groups.push((Lanes::of(&is.1), i + 1..i + 2));
+                }
+            }
+            nears.extend([was, is]);
+        }
+        Self {
+            nears,
+            groups,
             balls: Default::default(),
         }
     }
@@ -260,14 +339,12 @@ impl NearSet {
         &self.balls
     }
 
-    /// The shapes, each with its cells.
-    pub(crate) fn nears(&self) -> &[(Cells, Near)] {
-        &self.nears
-    }
-
-    /// Shape `j`'s numbers for the batch test.
-    pub(crate) fn lanes(&self, j: usize) -> &Lanes {
-        &self.lanes[j]
+    /// The groups of shapes: each group's numbers for the batch test and its
+    /// shapes, each with its cells.
+    pub(crate) fn groups(&self) -> impl Iterator<Item = (&Lanes, &[(Cells, Near)])> {
+        self.groups
+            .iter()
+            .map(|(lanes, at)| (lanes, &self.nears[at.clone()]))
     }
 
     /// Whether segment `s` comes within one of the shapes whose cells meet
