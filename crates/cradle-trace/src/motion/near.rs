@@ -91,7 +91,7 @@ impl Near {
                 if apart * apart > r * r * n2 * 1.0001 && n2 > 1e-12 {
                     return false;
                 }
-                segment_segment(p, q, a, b) <= r
+                segments_within(p, q, a, b, r)
             }
         }
     }
@@ -109,26 +109,24 @@ fn point_segment(c: Vec3, p: Vec3, q: Vec3) -> f32 {
     (p + d * t).distance(c)
 }
 
-/// Distance between segments `p`..`q` and `a`..`b`: the least of the four
-/// end-to-segment distances and, when the two closest points of the lines lie
-/// inside both segments, of theirs (the minimum is at one or the other).
-fn segment_segment(p: Vec3, q: Vec3, a: Vec3, b: Vec3) -> f32 {
-    let ends = point_segment(p, a, b)
-        .min(point_segment(q, a, b))
-        .min(point_segment(a, p, q))
-        .min(point_segment(b, p, q));
-    let (d1, d2, r) = (q - p, b - a, p - a);
+/// Whether segments `p`..`q` and `a`..`b` come within `r` of each other.
+/// Where the closest points of their lines lie inside both segments, those
+/// points are the closest of the segments; else the closest pair has an end
+/// of one, so the least of the four end-to-segment distances decides.
+fn segments_within(p: Vec3, q: Vec3, a: Vec3, b: Vec3, r: f32) -> bool {
+    let (d1, d2, w) = (q - p, b - a, p - a);
     let (aa, ee, bb) = (d1.length_squared(), d2.length_squared(), d1.dot(d2));
-    let (c, f) = (d1.dot(r), d2.dot(r));
+    let (c, f) = (d1.dot(w), d2.dot(w));
     let denom = aa * ee - bb * bb;
-    if denom <= 1e-6 * aa * ee {
-        return ends;
+    if denom > 1e-6 * aa * ee {
+        let s = (bb * f - c * ee) / denom;
+        let t = (aa * f - bb * c) / denom;
+        if (0.0..=1.0).contains(&s) && (0.0..=1.0).contains(&t) {
+            return (p + d1 * s).distance(a + d2 * t) <= r;
+        }
     }
-    let s = (bb * f - c * ee) / denom;
-    let t = (aa * f - bb * c) / denom;
-    if (0.0..=1.0).contains(&s) && (0.0..=1.0).contains(&t) {
-        ends.min((p + d1 * s).distance(a + d2 * t))
-    } else {
-        ends
-    }
+    point_segment(p, a, b) <= r
+        || point_segment(q, a, b) <= r
+        || point_segment(a, p, q) <= r
+        || point_segment(b, p, q) <= r
 }
