@@ -1,10 +1,12 @@
 //! The moved shapes together ([`NearSet`]) and the motion filter's inner
 //! test, eight ray segments at a time: an incremental
 //! frame gathers the segments of a row's pixels whose cells meet the moved ones
-//! into a [`Batch`], and tests each full batch against each moved shape at once
-//! (the segments in lanes, the shape's numbers in every lane), by the boxes and
-//! by the distance from the shape's line, which bounds the true distance from
-//! below. Only the pairs that test leaves take the exact `Near::meets`. Written
+//! into a [`Batch`], and tests each full batch against each moved object at
+//! once (the segments in lanes, the shape's numbers in every lane; an object
+//! where it was and where it is as one shape around both), by the boxes and by
+//! the distance from the shape's line, which bounds the true distance from
+//! below. Only the pairs that test leaves take the exact `Near::meets`, of
+//! each of the object's two places. Written
 //! once over the lane build (`crate::simd`): AVX2 where the CPU has it, the
 //! portable build elsewhere; both find the pixels the one-by-one test
 //! (`Near::meets` of every segment and shape) finds.
@@ -302,12 +304,11 @@ impl NearSet {
         let mut groups = Vec::with_capacity(pairs.len());
         for [was, is] in pairs {
             let i = nears.len();
-            match Lanes::around(&was.1, &is.1) {
-                Some(both) => groups.push((both, i..i + 2)),
-                None => {
-                    groups.push((Lanes::of(&was.1), i..i + 1));
-                    groups.push((Lanes::of(&is.1), i + 1..i + 2));
-                }
+            if let Some(both) = Lanes::around(&was.1, &is.1) {
+                groups.push((both, i..i + 2));
+            } else {
+                groups.push((Lanes::of(&was.1), i..i + 1));
+                groups.push((Lanes::of(&is.1), i + 1..i + 2));
             }
             nears.extend([was, is]);
         }
