@@ -16,7 +16,7 @@
 
 use super::bits::{BitRoom, ascending};
 use super::color::Image;
-use super::frame::{Frame, for_rows};
+use super::frame::Frame;
 use super::motion::RowMotion;
 use super::retrace::{Moved, Notes, retrace_row};
 use super::supersample::{Supersamples, supersampled};
@@ -92,8 +92,8 @@ pub(crate) fn adaptive_full(
         rgba: vec![0; w as usize * h as usize * 4],
     };
     let n = w as usize;
-    let (base_rows, lin): (Vec<RowMotion>, Vec<Vec<Vec3>>) =
-        for_rows(&mut base, parallel, |y, row| {
+    let (base_rows, lin): (Vec<RowMotion>, Vec<Vec<Vec3>>) = base
+        .for_rows(parallel, |y, row| {
             let mut lin = vec![Vec3::ZERO; n];
             let rm = frame.row_with(y, row, &CENTRE, Some(&mut lin));
             count();
@@ -103,8 +103,8 @@ pub(crate) fn adaptive_full(
         .unzip();
     let lin = lin.concat();
     let mut img = base.clone();
-    let (edge_rows, edge): (Vec<RowMotion>, Vec<Vec<bool>>) =
-        for_rows(&mut img, parallel, |y, row| {
+    let (edge_rows, edge): (Vec<RowMotion>, Vec<Vec<bool>>) = img
+        .for_rows(parallel, |y, row| {
             let flags = frame.edge_row(&base.rgba, y, threshold);
             let lin = &lin[y as usize * n..(y as usize + 1) * n];
             let mut rm = RowMotion::new(n, track);

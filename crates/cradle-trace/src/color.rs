@@ -12,6 +12,33 @@ pub struct Image {
     pub rgba: Vec<u8>,
 }
 
+impl Image {
+    /// Runs `f(y, row)` over the rows, in parallel on the current rayon pool
+    /// or serially (the same rows, the same results), and collects what it
+    /// returns per row.
+    pub(crate) fn for_rows<R: Send>(
+        &mut self,
+        parallel: bool,
+        f: impl Fn(u32, &mut [u8]) -> R + Sync,
+    ) -> Vec<R> {
+        use rayon::prelude::*;
+        let stride = self.width as usize * 4;
+        if parallel {
+            self.rgba
+                .par_chunks_exact_mut(stride)
+                .enumerate()
+                .map(|(y, row)| f(y as u32, row))
+                .collect()
+        } else {
+            self.rgba
+                .chunks_exact_mut(stride)
+                .enumerate()
+                .map(|(y, row)| f(y as u32, row))
+                .collect()
+        }
+    }
+}
+
 /// Buckets of the floats in [2^-14, 1]: 256 per octave (the top 8 bits of the
 /// mantissa), each holding at most one threshold (neighbouring thresholds are
 /// at least 0.9% apart, a bucket spans at most 0.4%).

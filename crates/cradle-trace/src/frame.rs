@@ -6,7 +6,7 @@
 //! below the drivers (`render`, `adaptive`, `incremental`).
 
 use super::camera::CameraRays;
-use super::color::{Image, srgb8};
+use super::color::srgb8;
 use super::geometry::Aabb;
 use super::material::radiance_bound;
 use super::motion::{Cells, Motion, MotionGrid, NoRecord, Record, RowMotion, Seg};
@@ -18,7 +18,6 @@ use super::scene::Scene;
 use super::shade::{trace, trace_primary};
 use super::tiles::Tiles;
 use glam::Vec3;
-use rayon::prelude::*;
 
 /// Which work-skipping the renderer may use. Each leaves the picture byte for byte
 /// as the full render makes it (tested); turning them off gives that reference.
@@ -320,29 +319,6 @@ impl<'a> Frame<'a> {
             }
         }
         out
-    }
-}
-
-/// Runs `f(y, row)` over the rows of `img`, in parallel on the current rayon pool
-/// or serially, and collects what it returns per row.
-pub(crate) fn for_rows<R: Send>(
-    img: &mut Image,
-    parallel: bool,
-    f: impl Fn(u32, &mut [u8]) -> R + Sync,
-) -> Vec<R> {
-    let stride = img.width as usize * 4;
-    if parallel {
-        img.rgba
-            .par_chunks_exact_mut(stride)
-            .enumerate()
-            .map(|(y, row)| f(y as u32, row))
-            .collect()
-    } else {
-        img.rgba
-            .chunks_exact_mut(stride)
-            .enumerate()
-            .map(|(y, row)| f(y as u32, row))
-            .collect()
     }
 }
 

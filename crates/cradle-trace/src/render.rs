@@ -8,7 +8,7 @@
 
 use super::adaptive::adaptive_full;
 use super::color::Image;
-use super::frame::{Frame, for_rows};
+use super::frame::Frame;
 use super::motion::RowMotion;
 use super::scene::Scene;
 use super::stretch::stretch;
@@ -42,7 +42,7 @@ fn image_counting(
         height: frame.height(),
         rgba: vec![0; frame.width() as usize * frame.height() as usize * 4],
     };
-    let rows = for_rows(&mut img, parallel, |y, row| {
+    let rows = img.for_rows(parallel, |y, row| {
         let motion = frame.row_with(y, row, frame.offsets(), None);
         if let Some(c) = rows_done {
             c.fetch_add(1, Ordering::Relaxed);

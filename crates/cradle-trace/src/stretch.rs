@@ -91,25 +91,16 @@ pub(crate) fn stretch(img: &Image, (width, height): (u32, u32), parallel: bool) 
         .chunks_exact(width as usize)
         .map(<[[u16; 4]]>::as_flattened)
         .collect();
-    let mut rgba = vec![0u8; width as usize * height as usize * 4];
-    let row = |(y, out): (usize, &mut [u8])| {
-        let (a, b, w) = ys[y];
-        down(wide[a], wide[b], w, out);
-    };
-    if parallel {
-        rgba.par_chunks_exact_mut(width as usize * 4)
-            .enumerate()
-            .for_each(row);
-    } else {
-        rgba.chunks_exact_mut(width as usize * 4)
-            .enumerate()
-            .for_each(row);
-    }
-    Image {
+    let mut out = Image {
         width,
         height,
-        rgba,
-    }
+        rgba: vec![0u8; width as usize * height as usize * 4],
+    };
+    out.for_rows(parallel, |y, row| {
+        let (a, b, w) = ys[y as usize];
+        down(wide[a], wide[b], w, row);
+    });
+    out
 }
 
 #[cfg(test)]
