@@ -123,17 +123,18 @@ fn pixel_size(cam: &CameraConfig, h: u32, distance: f64) -> f64 {
 #[must_use]
 pub fn static_scene(config: &Config) -> trace::Scene {
     let r = &config.render;
-    let q = Quality::at_rest(r);
-    trace::Scene {
+    let mut scene = trace::Scene {
         objects: Vec::new(),
         lights: config.lights.iter().map(light).collect(),
         camera: camera(&fitted_camera(config)),
         background: f32x3(r.background),
         size: (r.width, r.height),
         max_depth: r.max_depth,
-        samples: q.samples,
-        adaptive: q.adaptive,
+        samples: 1,
+        adaptive: None,
         motion_bounds: Some(motion_bounds(config)),
-        coarse: q.coarse,
-    }
+        coarse: 1,
+    };
+    Quality::at_rest(r).set_on(&mut scene);
+    scene
 }
