@@ -130,10 +130,9 @@ pub fn static_scene(config: &Config) -> trace::Scene {
         background: f32x3(r.background),
         size: (r.width, r.height),
         max_depth: r.max_depth,
-        samples: 1,
-        adaptive: None,
         motion_bounds: Some(motion_bounds(config)),
-        coarse: 1,
+        // Sampling: set just below.
+        ..trace::Scene::default()
     };
     Quality::at_rest(r).set_on(&mut scene);
     scene
