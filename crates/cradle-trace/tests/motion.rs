@@ -189,9 +189,10 @@ fn a_segment_left_out_passes_well_through_the_ball_where_it_was_and_is() {
 fn a_moved_object_tested_as_one_shape_around_both_finds_what_its_two_shapes_find() {
     let mut rng = Lcg(11);
     let mut taken = 0;
-    // Moves from a hundredth of a millimetre to 6 cm: the string's shapes
-    // stay two from 4 mm on (over twice its radius), the ball's at 6 cm.
-    for (i, step) in [1e-5_f32, 1e-3, 4e-3, 3e-2, 6e-2]
+    // Moves from a hundredth of a millimetre to 9 cm: the string's shapes
+    // stay two from 4 mm on, the ball's at 9 cm (each over twice its grown
+    // radius: 1.4 mm and 4.02 cm).
+    for (i, step) in [1e-5_f32, 1e-3, 4e-3, 3e-2, 9e-2]
         .into_iter()
         .cycle()
         .take(40)
