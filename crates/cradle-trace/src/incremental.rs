@@ -191,7 +191,12 @@ fn moved(
             if let super::scene::Shape::Sphere { centre, radius } = *s {
                 balls[side].push((centre, radius));
             }
-            near_pieces(s, &mut pieces);
+        }
+        if let Some(p) = piece_around(was, is) {
+            pieces.push(p);
+        } else {
+            near_pieces(was, &mut pieces);
+            near_pieces(is, &mut pieces);
         }
         if let [(c0, Some(n0)), (c1, Some(n1))] = both {
             for n in [n0, n1] {
@@ -219,6 +224,58 @@ fn near_pieces(shape: &super::scene::Shape, out: &mut Vec<Piece>) {
         Shape::Cylinder { a, b, radius } => out.push(Piece::Rod(a, b, radius + 2.0 * Near::PAD)),
         Shape::Sphere { centre, radius } => out.push(Piece::Ball(centre, radius + 2.0 * Near::PAD)),
         Shape::Plane { .. } => {}
+    }
+}
+
+/// One piece that holds both of `near_pieces`' pieces of an object that
+/// barely moved, from `was` to `is` (half its move at most a sixteenth of its
+/// radius): a ball around the midpoint of the centres, or a string or rod
+/// between the midpoints of the ends, grown by half the (larger) move and a
+/// hundredth of a percent against the rounding of these sums. In the
+/// realistic cradle, whose middle balls move by micrometres a frame, a third
+/// of the pieces go; an object that moves farther keeps its two, whose union
+/// is tighter.
+fn piece_around(was: &super::scene::Shape, is: &super::scene::Shape) -> Option<Piece> {
+    use super::scene::Shape;
+    const BARELY: f32 = 1.0 / 16.0;
+    const GROW: f32 = 1.0001;
+    let g = 2.0 * Near::PAD;
+    match (*was, *is) {
+        (
+            Shape::Sphere {
+                centre: c0,
+                radius: r0,
+            },
+            Shape::Sphere {
+                centre: c1,
+                radius: r1,
+            },
+        ) => {
+            let (half, r) = (0.5 * c0.distance(c1), r0.max(r1));
+            (half <= BARELY * r).then(|| Piece::Ball(c0.midpoint(c1), (r + g + half) * GROW + 1e-6))
+        }
+        (
+            Shape::Cylinder {
+                a: a0,
+                b: b0,
+                radius: r0,
+            },
+            Shape::Cylinder {
+                a: a1,
+                b: b1,
+                radius: r1,
+            },
+        ) => {
+            let (half, r) = (0.5 * a0.distance(a1).max(b0.distance(b1)), r0.max(r1));
+            (half <= BARELY * r).then(|| {
+                Piece::Rod(
+                    a0.midpoint(a1),
+                    b0.midpoint(b1),
+                    (r + g + half) * GROW + 1e-6,
+                )
+            })
+        }
+        _ => None,
     }
 }
 
@@ -394,9 +451,11 @@ impl Incremental {
 
 #[cfg(test)]
 mod tests {
-    use super::shape_cells;
+    use super::{piece_around, shape_cells};
     use crate::geometry::Aabb;
     use crate::motion::MotionGrid;
+    use crate::motion::Near;
+    use crate::retrace::Piece;
     use crate::scene::Shape;
     use glam::Vec3;
 
@@ -428,5 +487,79 @@ mod tests {
             band.count_ones(),
             boxed.count_ones()
         );
+    }
+
+    /// Distance in f64 from `p` to the segment from `a` to `b`.
+    fn to_axis(p: Vec3, a: Vec3, b: Vec3) -> f64 {
+        let (p, a, b) = (p.as_dvec3(), a.as_dvec3(), b.as_dvec3());
+        let e = b - a;
+        let t = if e.length_squared() > 0.0 {
+            ((p - a).dot(e) / e.length_squared()).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        p.distance(a + e * t)
+    }
+
+    #[test]
+    fn one_piece_around_an_object_that_barely_moved_holds_both_places() {
+        let g = f64::from(2.0 * Near::PAD);
+        // A ball moved by 1 mm (half of it is 1/40 of its radius): every point of
+        // either place, grown as its own piece would be, lies in the one piece.
+        let (c0, c1, r) = (
+            Vec3::new(0.01, 0.09, 0.0),
+            Vec3::new(0.011, 0.0899, 0.0),
+            0.02,
+        );
+        let ball = |c| Shape::Sphere {
+            centre: c,
+            radius: r,
+        };
+        let Some(Piece::Ball(m, big)) = piece_around(&ball(c0), &ball(c1)) else {
+            panic!("one ball expected");
+        };
+        // A string whose lower end moved by 20 micrometres (radius 0.6 mm).
+        let (top, b0, b1, sr) = (
+            Vec3::new(0.0, 0.25, 0.05),
+            Vec3::new(0.01, 0.09, 0.0),
+            Vec3::new(0.01002, 0.09, 0.0),
+            0.0006,
+        );
+        let string = |b| Shape::Cylinder {
+            a: top,
+            b,
+            radius: sr,
+        };
+        let Some(Piece::Rod(ma, mb, thick)) = piece_around(&string(b0), &string(b1)) else {
+            panic!("one rod expected");
+        };
+        // Points on each place's grown surface, in many directions.
+        for i in 0..2000 {
+            let u = i as f32 / 2000.0;
+            let (th, ph) = (u * 97.0, u * 13.0);
+            let d = Vec3::new(th.sin() * ph.cos(), th.cos(), th.sin() * ph.sin());
+            for c in [c0, c1] {
+                let p = c + d * (r + 2.0 * Near::PAD);
+                assert!(
+                    to_axis(p, m, m) <= f64::from(big),
+                    "ball point {i} outside: {} > {big}",
+                    to_axis(p, m, m)
+                );
+            }
+            for b in [b0, b1] {
+                let p = top.lerp(b, u) + d * (sr + 2.0 * Near::PAD);
+                assert!(
+                    to_axis(p, ma, mb) <= f64::from(thick),
+                    "string point {i} outside"
+                );
+            }
+        }
+        // The one piece is hardly larger than one place's.
+        assert!(f64::from(big) < (f64::from(r) + g) * 1.03);
+        // An object that moved farther keeps its two pieces.
+        let far = c0 + Vec3::new(0.003, 0.0, 0.0);
+        assert!(piece_around(&ball(c0), &ball(far)).is_none());
+        assert!(piece_around(&string(b0), &string(b0 + Vec3::X * 1e-4)).is_none());
+        assert!(piece_around(&ball(c0), &string(b0)).is_none());
     }
 }
