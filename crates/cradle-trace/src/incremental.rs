@@ -7,7 +7,7 @@ use super::adaptive::{adaptive_full, adaptive_next};
 use super::camera::CameraRays;
 use super::color::Image;
 use super::frame::{Frame, RenderOptions};
-use super::geometry::Aabb;
+use super::geometry::{Aabb, midway};
 use super::motion::RowMotion;
 use super::motion::{Cells, MotionGrid, Near, NearSet};
 use super::render::image;
@@ -229,18 +229,17 @@ fn near_pieces(shape: &super::scene::Shape, out: &mut Vec<Piece>) {
 
 /// One piece that holds both of `near_pieces`' pieces of an object that
 /// barely moved, from `was` to `is` (half its move at most a sixteenth of its
-/// radius): a ball around the midpoint of the centres, or a string or rod
-/// between the midpoints of the ends, grown by half the (larger) move and a
-/// hundredth of a percent against the rounding of these sums. In the
+/// radius): a ball or a string or rod [`midway`] between its places, grown
+/// by half the (larger) move and a hundredth of a percent against the
+/// rounding of these sums (as the lane test's `Lanes::around`). In the
 /// realistic cradle, whose middle balls move by micrometres a frame, a third
 /// of the pieces go; an object that moves farther keeps its two, whose union
 /// is tighter.
 fn piece_around(was: &super::scene::Shape, is: &super::scene::Shape) -> Option<Piece> {
     use super::scene::Shape;
     const BARELY: f32 = 1.0 / 16.0;
-    const GROW: f32 = 1.0001;
-    let g = 2.0 * Near::PAD;
-    match (*was, *is) {
+    let grown = |r: f32, half: f32| (r + 2.0 * Near::PAD + half) * 1.0001 + 1e-6;
+    let (ends, r0, r1, ball) = match (*was, *is) {
         (
             Shape::Sphere {
                 centre: c0,
@@ -250,10 +249,7 @@ fn piece_around(was: &super::scene::Shape, is: &super::scene::Shape) -> Option<P
                 centre: c1,
                 radius: r1,
             },
-        ) => {
-            let (half, r) = (0.5 * c0.distance(c1), r0.max(r1));
-            (half <= BARELY * r).then(|| Piece::Ball(c0.midpoint(c1), (r + g + half) * GROW + 1e-6))
-        }
+        ) => (((c0, c0), (c1, c1)), r0, r1, true),
         (
             Shape::Cylinder {
                 a: a0,
@@ -265,18 +261,17 @@ fn piece_around(was: &super::scene::Shape, is: &super::scene::Shape) -> Option<P
                 b: b1,
                 radius: r1,
             },
-        ) => {
-            let (half, r) = (0.5 * a0.distance(a1).max(b0.distance(b1)), r0.max(r1));
-            (half <= BARELY * r).then(|| {
-                Piece::Rod(
-                    a0.midpoint(a1),
-                    b0.midpoint(b1),
-                    (r + g + half) * GROW + 1e-6,
-                )
-            })
+        ) => (((a0, b0), (a1, b1)), r0, r1, false),
+        _ => return None,
+    };
+    let (((a, b), half), r) = (midway(ends.0, ends.1), r0.max(r1));
+    (half <= BARELY * r).then(|| {
+        if ball {
+            Piece::Ball(a, grown(r, half))
+        } else {
+            Piece::Rod(a, b, grown(r, half))
         }
-        _ => None,
-    }
+    })
 }
 
 /// The cells `shape` overlaps: a cylinder's as the cells of 8 pieces along it,

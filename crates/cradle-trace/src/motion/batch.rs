@@ -19,6 +19,7 @@
 use super::near::{Near, NearShape};
 use super::{Cells, Seg};
 use crate::bits::{BitRoom, RowBits};
+use crate::geometry::midway;
 use crate::simd::{Build, Kernel, Simd};
 use glam::Vec3;
 
@@ -235,16 +236,12 @@ impl Lanes {
     fn around(was: &Near, is: &Near) -> Option<Self> {
         const GROW: f32 = 1.0001;
         let (a, e, r, half, ball) = match (was.shape, is.shape) {
-            (NearShape::Sphere(c0, r0), NearShape::Sphere(c1, r1)) => (
-                c0.midpoint(c1),
-                Vec3::ZERO,
-                r0.max(r1),
-                0.5 * c0.distance(c1),
-                true,
-            ),
+            (NearShape::Sphere(c0, r0), NearShape::Sphere(c1, r1)) => {
+                let ((c, _), half) = midway((c0, c0), (c1, c1));
+                (c, Vec3::ZERO, r0.max(r1), half, true)
+            }
             (NearShape::Capsule(a0, b0, r0), NearShape::Capsule(a1, b1, r1)) => {
-                let (a, b) = (a0.midpoint(a1), b0.midpoint(b1));
-                let half = 0.5 * a0.distance(a1).max(b0.distance(b1));
+                let ((a, b), half) = midway((a0, b0), (a1, b1));
                 (a, b - a, r0.max(r1), half, false)
             }
             _ => return None,
