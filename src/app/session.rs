@@ -14,7 +14,7 @@ use crate::cli::{Common, InputError};
 use crate::config::{Config, ConfigSource, MAX_BALLS};
 use crate::scene::CradleWorld;
 use crate::scene::components::Quality;
-use crate::trace::{self, Changes, Image};
+use crate::trace::{Changes, Image};
 use std::time::Instant;
 
 /// Longest simulated step of one frame (s): after a stall the swing continues
@@ -99,7 +99,7 @@ impl Session {
         fit_window(&mut config);
         let muted = overrides.mute;
         Ok(Self {
-            pool: trace::pool(config.render.threads)?,
+            pool: cores::pool(config.render.threads)?,
             world: CradleWorld::new(&config),
             asset: config.clone(),
             config,
@@ -316,7 +316,7 @@ impl Session {
         }
         tracing::info!("reloaded {}", self.source);
         if config.render.threads != self.config.render.threads
-            && let Ok(pool) = trace::pool(config.render.threads)
+            && let Ok(pool) = cores::pool(config.render.threads)
         {
             // Not while a frame traces on the old pool.
             self.tracer.join();
@@ -762,6 +762,7 @@ impl Session {
 
 use super::audible::{Audible, Hearing};
 
+mod cores;
 mod rate_log;
 mod status;
 mod tracer;
