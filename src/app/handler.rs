@@ -146,9 +146,11 @@ impl App {
         let cpu_prep = thread_cpu() - cpu0;
         let t_up = std::time::Instant::now();
         let overlay = self.session.overlay(t_up);
-        surface.upload(self.session.image(), self.session.changes(), &overlay);
-        // The next frame traces while this one is drawn.
+        // The next frame traces while this one is drawn; it prepares while
+        // this one's picture is copied to the framebuffer.
         self.session.launch();
+        surface.upload(self.session.image(), self.session.changes(), &overlay);
+        self.session.give_back();
         let up = t_up.elapsed();
         let t1 = std::time::Instant::now();
         let cpu1 = thread_cpu();
@@ -165,8 +167,8 @@ impl App {
         }
         // The main thread's cost of the step (the physics, the scene, taking
         // the last trace back: it waits for it), of the egui frame, of the
-        // upload (the picture's changes and the HUD into the framebuffer, and
-        // launching the next trace) and of presenting, in wall time and in
+        // upload (launching the next trace, and the picture's changes and the
+        // HUD into the framebuffer) and of presenting, in wall time and in
         // its own CPU time (a software renderer rasterises on threads of its
         // own, which the wall time waits for): `RUST_LOG=info,frame_cost=trace`.
         tracing::trace!(

@@ -545,9 +545,16 @@ impl Session {
     }
 
     /// Starts tracing the frame [`Self::step`] left (pipelined), if it left one;
-    /// the next step takes it back.
+    /// the next step takes it back. Until [`Self::give_back`], [`Self::image`]
+    /// is still the last picture, while the frame prepares.
     pub fn launch(&mut self) {
         self.tracer.launch_due(&self.pool, self.world.scene());
+    }
+
+    /// Gives the last picture back to the frame [`Self::launch`] started, which
+    /// waits for it to trace: call it once the picture is copied.
+    pub fn give_back(&mut self) {
+        self.tracer.give_back();
     }
 
     /// The flat scene of the last frame (its camera places the clicks).

@@ -36,6 +36,45 @@ pub struct Changes<'a> {
     pub rows: &'a [[u32; 2]],
 }
 
+/// The last picture of a renderer and which bytes its frame changed, lent out
+/// ([`Incremental::lend`]) so that another thread reads it while the renderer
+/// prepares its next frame ([`Incremental::render_lent`]), which takes it back
+/// before it writes a pixel: the window copies the picture's changes to its
+/// framebuffer while the next frame's set-up runs, not before it starts.
+#[derive(Debug)]
+pub struct Lent {
+    image: Image,
+    written: Vec<[u32; 2]>,
+    id: u64,
+    since: Option<u64>,
+}
+
+impl Lent {
+    /// The picture.
+    #[must_use]
+    pub fn image(&self) -> &Image {
+        &self.image
+    }
+
+    /// Which bytes its frame may have changed.
+    #[must_use]
+    pub fn changes(&self) -> Changes<'_> {
+        Changes::of(self.id, self.since, &self.written)
+    }
+}
+
+impl<'a> Changes<'a> {
+    /// Picture `id`'s changes from picture `since`, `written` per row (read
+    /// only when there is a `since`).
+    fn of(id: u64, since: Option<u64>, written: &'a [[u32; 2]]) -> Self {
+        Self {
+            id,
+            since,
+            rows: if since.is_some() { written } else { &[] },
+        }
+    }
+}
+
 /// What changed since the frame a renderer traced last, as its caller knows it
 /// (the app's ECS, from the transforms its physics changed): the renderer
 /// re-traces around the objects named and keeps every other pixel, so the
@@ -313,6 +352,32 @@ impl Incremental {
     /// Renders `scene` on the current rayon pool, `change` saying what changed
     /// since the last frame this renderer traced, and returns the picture.
     pub fn render_changed(&mut self, scene: &Scene, change: &Change) -> &Image {
+        self.render_lent(scene, change, || None)
+    }
+
+    /// Lends the last picture out (`None` before the first): until
+    /// [`Self::render_lent`] takes it back, the renderer holds no picture.
+    pub fn lend(&mut self) -> Option<Lent> {
+        let image = self.image.take()?;
+        Some(Lent {
+            image,
+            written: std::mem::take(&mut self.written),
+            id: self.id,
+            since: self.since,
+        })
+    }
+
+    /// [`Self::render_changed`] when the last picture is lent out
+    /// ([`Self::lend`]): the frame is prepared (its culling, what moved and
+    /// where it shows), then `back` gives the picture back (it may wait for
+    /// its reader) and the frame traces into it. Without it back (`None`), the
+    /// frame is traced in full.
+    pub fn render_lent(
+        &mut self,
+        scene: &Scene,
+        change: &Change,
+        back: impl FnOnce() -> Option<Lent>,
+    ) -> &Image {
         self.last = None;
         if scene.coarse > 1 {
             return self.render_coarse(scene);
@@ -340,6 +405,12 @@ impl Incremental {
                 Some(moved(&grid, &cam, (&self.shapes, scene), list?))
             },
         );
+        if self.image.is_none()
+            && let Some(lent) = back()
+        {
+            self.image = Some(lent.image);
+            self.written = lent.written;
+        }
         let adaptive = frame.edge();
         let reuse = self.image.is_some() && adaptive.is_some() == self.layers.is_some();
         self.full = !reuse;
@@ -410,15 +481,7 @@ impl Incremental {
     #[must_use]
     pub fn changes(&self) -> Option<Changes<'_>> {
         self.image.as_ref()?;
-        Some(Changes {
-            id: self.id,
-            since: self.since,
-            rows: if self.since.is_some() {
-                &self.written
-            } else {
-                &[]
-            },
-        })
+        Some(Changes::of(self.id, self.since, &self.written))
     }
 
     /// The last picture rendered.

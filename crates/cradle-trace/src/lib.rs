@@ -43,7 +43,7 @@ mod tuning;
 mod wide;
 
 pub use color::{Image, srgb8};
-pub use incremental::{Change, Changes, Incremental};
+pub use incremental::{Change, Changes, Incremental, Lent};
 pub use prepared::Prepared;
 pub use render::{
     RenderOptions, pool, render, render_counting, render_serial, render_serial_with, render_with,

@@ -2,9 +2,11 @@
 //! swing runs in the window, one frame behind on the render pool: the window
 //! shows frame N while frame N + 1 traces, so presenting it (the copy to the GPU,
 //! the compositor's work) and tracing share the CPUs instead of taking turns.
+//! While frame N + 1 prepares, frame N's picture is lent out, so the window
+//! copies it to its framebuffer then ([`Tracer::give_back`]).
 //! Window-free.
 
-use crate::trace::{Change, Changes, Image, Incremental, Scene};
+use crate::trace::{Change, Changes, Image, Incremental, Lent, Scene};
 use std::sync::mpsc;
 use std::time::Instant;
 
@@ -25,6 +27,9 @@ pub struct Tracer {
     due: bool,
     /// What changed since the renderer's last frame, not traced yet.
     pending: Change,
+    /// The last picture, lent out while the renderer prepares the next frame
+    /// on the pool, and where to give it back.
+    lent: Option<(Lent, mpsc::SyncSender<Lent>)>,
 }
 
 impl Default for Tracer {
@@ -35,6 +40,7 @@ impl Default for Tracer {
             pipelined: false,
             due: false,
             pending: Change::none(),
+            lent: None,
         }
     }
 }
@@ -43,6 +49,7 @@ impl Tracer {
     /// Waits for the frame tracing on the pool, if one is, and takes the renderer
     /// back: how long that frame took to trace (ms).
     pub fn join(&mut self) -> Option<f64> {
+        self.give_back();
         let away = self.away.take()?;
         if let Ok((renderer, ms)) = away.recv() {
             self.home = Some(renderer);
@@ -117,27 +124,47 @@ impl Tracer {
         let change = self.since_last(change);
         let mut renderer = self.home.take().unwrap_or_default();
         let (done, away) = mpsc::sync_channel(1);
+        // The picture stays here, readable, while the frame prepares; without
+        // one the sender goes at once and the frame does not wait.
+        let (give, back) = mpsc::sync_channel(1);
+        self.lent = renderer.lend().map(|lent| (lent, give));
         pool.spawn(move || {
             let start = Instant::now();
-            renderer.render_changed(&scene, &change);
+            renderer.render_lent(&scene, &change, || back.recv().ok());
             // Nobody waits when the session has ended meanwhile: nothing to do.
             let _ = done.send((renderer, start.elapsed().as_secs_f64() * 1e3));
         });
         self.away = Some(away);
     }
 
-    /// The last frame traced and taken back (`None` before the first, and while
-    /// a frame traces on the pool).
+    /// Gives the picture lent out at [`Self::launch`] back to the frame on the
+    /// pool, which waits for it to trace; [`Self::join`] does so first.
+    pub fn give_back(&mut self) {
+        if let Some((lent, give)) = self.lent.take() {
+            // The frame has ended meanwhile only if it panicked: nobody waits.
+            let _ = give.send(lent);
+        }
+    }
+
+    /// The last frame traced and taken back, or lent out while the next one
+    /// prepares (`None` before the first, and while a frame traces on the
+    /// pool, once the picture is given back).
     #[must_use]
     pub fn image(&self) -> Option<&Image> {
-        self.home.as_ref()?.image()
+        match (&self.home, &self.lent) {
+            (Some(home), _) => home.image(),
+            (None, lent) => lent.as_ref().map(|(l, _)| l.image()),
+        }
     }
 
     /// Which pixels the frame of [`Self::image`] changed (`None` when it is
     /// `None`).
     #[must_use]
     pub fn changes(&self) -> Option<Changes<'_>> {
-        self.home.as_ref()?.changes()
+        match (&self.home, &self.lent) {
+            (Some(home), _) => home.changes(),
+            (None, lent) => lent.as_ref().map(|(l, _)| l.changes()),
+        }
     }
 }
 
@@ -155,15 +182,25 @@ mod tests {
         world.set_running(true);
         let pool = crate::trace::pool(2).expect("a pool");
         let (mut inline, mut away) = (Tracer::default(), Tracer::default());
-        for _ in 0..4 {
+        let mut before: Option<Vec<u8>> = None;
+        for k in 0..6 {
             world.frame(0.05);
             let change = world.take_change();
             inline.trace(&pool, world.scene(), change.clone());
             away.launch(&pool, world.scene().clone(), change);
-            assert!(
-                away.image().is_none(),
-                "the renderer is away while it traces"
+            // While the frame prepares, the picture before it is lent out.
+            let lent = away.image().map(|i| i.rgba.clone());
+            assert!(lent == before, "frame {k}: the picture before, lent out");
+            assert_eq!(
+                away.changes().map(|c| c.since.is_some()),
+                before.as_ref().map(|_| k > 1),
+                "frame {k}: its changes with it (the first frame is full)"
             );
+            // Given back at once, or by the join itself.
+            if k % 2 == 0 {
+                away.give_back();
+                assert!(away.image().is_none(), "the renderer is away");
+            }
             assert!(away.join().is_some_and(|ms| ms >= 0.0));
             assert!(away.join().is_none(), "nothing left to take back");
             let (a, b) = (inline.image().expect("traced"), away.image().expect("back"));
@@ -172,6 +209,7 @@ mod tests {
                 a.rgba == b.rgba,
                 "the same bytes, traced on the pool or in line"
             );
+            before = Some(b.rgba.clone());
         }
     }
 }
