@@ -141,7 +141,8 @@ impl Tracer {
     /// pool, which waits for it to trace; [`Self::join`] does so first.
     pub fn give_back(&mut self) {
         if let Some((lent, give)) = self.lent.take() {
-            // The frame has ended meanwhile only if it panicked: nobody waits.
+            // A frame that needs no picture (one ray per block) has not waited
+            // for it, and may have ended: then the picture goes.
             let _ = give.send(lent);
         }
     }
