@@ -174,6 +174,7 @@ mod tests {
     use super::Tracer;
     use crate::config::Config;
     use crate::scene::CradleWorld;
+    use crate::trace::Incremental;
 
     #[test]
     fn a_frame_launched_on_the_pool_comes_back_as_the_same_picture_traced_in_line() {
@@ -211,6 +212,36 @@ mod tests {
                 "the same bytes, traced on the pool or in line"
             );
             before = Some(b.rgba.clone());
+        }
+    }
+
+    #[test]
+    fn a_frame_whose_picture_is_not_given_back_is_traced_in_full_to_the_same_bytes() {
+        let mut config = Config::default();
+        (config.render.width, config.render.height) = (64, 32);
+        let mut world = CradleWorld::new(&config);
+        world.set_running(true);
+        let pool = crate::trace::pool(2).expect("a pool");
+        let (mut inline, mut lending) = (Incremental::new(), Incremental::new());
+        // The first frame has nothing to lend; the second gets its picture
+        // back; the third's is dropped.
+        for (k, full) in [(0, true), (1, false), (2, true)] {
+            world.frame(0.05);
+            let change = world.take_change();
+            let scene = world.scene();
+            pool.install(|| {
+                inline.render_changed(scene, &change);
+                let lent = lending.lend();
+                assert_eq!(lent.is_some(), k > 0, "frame {k}: a picture to lend");
+                let back = (k == 1).then_some(lent).flatten();
+                lending.render_lent(scene, &change, || back);
+            });
+            assert_eq!(lending.last_was_full(), full, "frame {k}");
+            let (a, b) = (
+                inline.image().expect("traced"),
+                lending.image().expect("traced"),
+            );
+            assert!(a.rgba == b.rgba, "frame {k}: the bytes traced in line");
         }
     }
 }
