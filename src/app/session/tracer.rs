@@ -152,9 +152,9 @@ impl Tracer {
     /// pool, once the picture is given back).
     #[must_use]
     pub fn image(&self) -> Option<&Image> {
-        match (&self.home, &self.lent) {
-            (Some(home), _) => home.image(),
-            (None, lent) => lent.as_ref().map(|(l, _)| l.image()),
+        match &self.home {
+            Some(home) => home.image(),
+            None => self.lent.as_ref().map(|(l, _)| l.image()),
         }
     }
 
@@ -162,9 +162,9 @@ impl Tracer {
     /// `None`).
     #[must_use]
     pub fn changes(&self) -> Option<Changes<'_>> {
-        match (&self.home, &self.lent) {
-            (Some(home), _) => home.changes(),
-            (None, lent) => lent.as_ref().map(|(l, _)| l.changes()),
+        match &self.home {
+            Some(home) => home.changes(),
+            None => self.lent.as_ref().map(|(l, _)| l.changes()),
         }
     }
 }
@@ -176,13 +176,18 @@ mod tests {
     use crate::scene::CradleWorld;
     use crate::trace::Incremental;
 
-    #[test]
-    fn a_frame_launched_on_the_pool_comes_back_as_the_same_picture_traced_in_line() {
+    /// A small cradle swinging, and a pool of two to trace it on.
+    fn swinging() -> (CradleWorld, rayon::ThreadPool) {
         let mut config = Config::default();
         (config.render.width, config.render.height) = (64, 32);
         let mut world = CradleWorld::new(&config);
         world.set_running(true);
-        let pool = crate::trace::pool(2).expect("a pool");
+        (world, crate::trace::pool(2).expect("a pool"))
+    }
+
+    #[test]
+    fn a_frame_launched_on_the_pool_comes_back_as_the_same_picture_traced_in_line() {
+        let (mut world, pool) = swinging();
         let (mut inline, mut away) = (Tracer::default(), Tracer::default());
         let mut before: Option<Vec<u8>> = None;
         for k in 0..6 {
@@ -217,11 +222,7 @@ mod tests {
 
     #[test]
     fn a_frame_whose_picture_is_not_given_back_is_traced_in_full_to_the_same_bytes() {
-        let mut config = Config::default();
-        (config.render.width, config.render.height) = (64, 32);
-        let mut world = CradleWorld::new(&config);
-        world.set_running(true);
-        let pool = crate::trace::pool(2).expect("a pool");
+        let (mut world, pool) = swinging();
         let (mut inline, mut lending) = (Incremental::new(), Incremental::new());
         // The first frame has nothing to lend; the second gets its picture
         // back; the third's is dropped.
