@@ -10,7 +10,8 @@ pub(crate) use crate::tuning::SUPER;
 /// What a row's rays passed: per pixel its motion cells, and its segments in the
 /// motion box, `segs[span[k][0]..span[k][1]]` for pixel `k`. Without spans
 /// (untracked frames, full adaptive frames) only the cells count. A pixel traced
-/// again appends its new segments and leaves its old ones as garbage, which
+/// again writes its new segments over its old ones where they fit (what is left
+/// over is garbage), else appends them and leaves its old ones as garbage, which
 /// [`RowMotion::compact`] drops once it is half the row's, so a frame's work is in
 /// the pixels it traces, not in copying the others'. `blocks` holds the union of
 /// the cells of each [`BLOCK`] pixels, `supers` of each [`SUPER`] blocks and
@@ -128,18 +129,28 @@ impl RowMotion {
     }
 
     /// Traces pixel `k` again: `trace` appends its segments and returns its cells
-    /// (and what the caller wants back); they replace the old ones.
+    /// (and what the caller wants back); they replace the old ones, in their
+    /// place when they are no more.
     pub(crate) fn retrace<R>(
         &mut self,
         k: usize,
         trace: impl FnOnce(&mut Vec<Seg>) -> (Cells, R),
     ) -> R {
-        let start = self.segs.len() as u32;
+        let start = self.segs.len();
         let (cells, out) = trace(&mut self.segs);
         self.cells[k] = cells;
         if let Some(span) = self.span.get_mut(k) {
-            self.garbage += (span[1] - span[0]) as usize;
-            *span = [start, self.segs.len() as u32];
+            let (a, b, n) = (span[0] as usize, span[1] as usize, self.segs.len() - start);
+            if n <= b - a {
+                // They fit where the old ones were.
+                self.segs.copy_within(start.., a);
+                self.segs.truncate(start);
+                self.garbage += b - a - n;
+                *span = [a as u32, (a + n) as u32];
+            } else {
+                self.garbage += b - a;
+                *span = [start as u32, self.segs.len() as u32];
+            }
         }
         out
     }

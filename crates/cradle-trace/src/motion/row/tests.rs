@@ -19,17 +19,18 @@ fn a_filled_row_takes_as_many_segments_again_without_moving_its_buffer() {
     rm.seal();
     rm.room();
     let (len, at) = (rm.segs.len(), rm.segs.as_ptr());
-    // Every pixel traced again with its three segments, and a quarter of
-    // them with one more: as much garbage as live segments, the most a
-    // row holds before `compact` drops the garbage.
+    // Every pixel traced again, three quarters of them with one segment
+    // more: theirs are appended (the others' fit where the old ones were),
+    // and the garbage stays under half the segments, so `compact` keeps it.
     for k in 0..100 {
-        let n = if k % 4 == 0 { 4 } else { 3 };
+        let n = if k % 4 == 0 { 3 } else { 4 };
         rm.retrace(k, |out| {
             out.extend(std::iter::repeat_n(seg, n));
             (1, ())
         });
     }
-    assert_eq!(rm.segs.len(), len + 325);
+    assert_eq!(rm.segs.len(), len + 300);
+    assert_eq!(rm.garbage, 225);
     assert_eq!(rm.segs.as_ptr(), at, "the buffer grew");
     // An untracked record takes no room.
     let mut bare = RowMotion::new(100, false);
@@ -74,8 +75,11 @@ fn compaction_keeps_each_pixels_segments_and_drops_the_rest() {
     for k in 0..10 {
         assert_eq!(rm.of(k), &want(k)[..], "pixel {k}");
     }
-    // Garbage: the old 3+1+2+3+2+3 segments of pixels 2, 3, 4, 5, 7 and 8,
-    // more than half of the 19 + 6 appended: compacted to the 11 live.
-    assert_eq!(before, 25);
+    // Only pixel 3's four segments are appended: the others' fit where their
+    // old ones were. Garbage: the 2 + 1 + 2 + 3 + 2 + 2 segments that pixels
+    // 2, 3, 4, 5, 7 and 8 no longer refer to, more than half of the 19 + 4:
+    // compacted to the 11 live.
+    assert_eq!(before, 23);
+    assert_eq!(rm.garbage, 0);
     assert_eq!(rm.segs.len(), 11);
 }
