@@ -16,7 +16,7 @@
 
 use super::bits::{BitRoom, ascending};
 use super::color::Image;
-use super::frame::Frame;
+use super::frame::{Frame, least_above};
 use super::motion::RowMotion;
 use super::retrace::{Moved, Notes, retrace_row};
 use super::supersample::{Supersamples, supersampled};
@@ -203,6 +203,7 @@ pub(crate) fn adaptive_next(
     let (base, lin, xs) = (&layers.base.rgba, &layers.lin, &layers.changed);
     // The edge test again at each changed pixel and its 4-neighbours, in
     // place: per row, the pixels whose flag flipped.
+    let least = least_above(threshold);
     layers
         .edge
         .par_chunks_exact_mut(w)
@@ -222,7 +223,7 @@ pub(crate) fn adaptive_next(
             let mut bits = room.row(w);
             above_below.chain(here).for_each(|x| bits.set(x));
             for x in bits.iter() {
-                let now = frame.is_edge(base, x as u32, y as u32, threshold);
+                let now = frame.is_edge(base, x as u32, y as u32, least);
                 if now != flags[x] {
                     flags[x] = now;
                     flipped.push(x as u32);

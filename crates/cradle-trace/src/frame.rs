@@ -272,20 +272,21 @@ impl<'a> Frame<'a> {
     }
 
     /// Whether pixel `(x, y)` of a one-sample picture differs from a 4-neighbour
-    /// by more than `edge` in some channel.
-    pub(crate) fn is_edge(&self, base: &[u8], x: u32, y: u32, edge: f32) -> bool {
-        let at = |x: u32, y: u32| (y as usize * self.width as usize + x as usize) * 4;
-        let here = &base[at(x, y)..at(x, y) + 3];
-        let differs = |nx: u32, ny: u32| {
-            let there = &base[at(nx, ny)..at(nx, ny) + 3];
-            here.iter()
-                .zip(there)
-                .any(|(a, b)| f32::from(a.abs_diff(*b)) > edge)
+    /// by more than the edge threshold in some channel, given the least byte
+    /// difference above it ([`least_above`]).
+    pub(crate) fn is_edge(&self, base: &[u8], x: u32, y: u32, least: u16) -> bool {
+        let w = self.width as usize;
+        let i = (y as usize * w + x as usize) * 4;
+        let here = &base[i..i + 3];
+        let differs = |j: usize| {
+            let there = &base[j..j + 3];
+            let most = here.iter().zip(there).map(|(a, b)| a.abs_diff(*b)).max();
+            most.is_some_and(|d| u16::from(d) >= least)
         };
-        (x > 0 && differs(x - 1, y))
-            || (x + 1 < self.width && differs(x + 1, y))
-            || (y > 0 && differs(x, y - 1))
-            || (y + 1 < self.height && differs(x, y + 1))
+        (x > 0 && differs(i - 4))
+            || (x + 1 < self.width && differs(i + 4))
+            || (y > 0 && differs(i - 4 * w))
+            || (y + 1 < self.height && differs(i + 4 * w))
     }
 
     /// [`Self::is_edge`] of every pixel of row `y`: each pair of neighbours
@@ -322,9 +323,18 @@ impl<'a> Frame<'a> {
     }
 }
 
+/// The least byte difference `d` with `f32::from(d) > edge` (256 when none
+/// is): a channel differs by more than `edge` where its difference is at
+/// least this, so [`Frame::is_edge`] compares bytes.
+pub(crate) fn least_above(edge: f32) -> u16 {
+    (0..=255u8)
+        .find(|&d| f32::from(d) > edge)
+        .map_or(256, u16::from)
+}
+
 #[cfg(test)]
 mod tests {
-    use super::{Frame, RenderOptions};
+    use super::{Frame, RenderOptions, least_above};
     use crate::scene::Scene;
 
     /// A row's edge flags are each pixel's own edge test, on pictures of
@@ -350,12 +360,29 @@ mod tests {
                 let base: Vec<u8> = (0..w * h * 4)
                     .map(|i| if flat { (i / 4 / 5 % 4) as u8 } else { next() })
                     .collect();
-                for edge in [-1.0, 0.0, 0.5, 1.0, 2.0, 25.5, 254.9, 255.0] {
+                // Some channel of a 4-neighbour differs by more than `edge`.
+                let px = |x: u32, y: u32| &base[((y * w + x) * 4) as usize..][..3];
+                let edge_at = |x: u32, y: u32, edge: f32| {
+                    let n = [(-1, 0), (1, 0), (0, -1), (0, 1)];
+                    n.iter().any(|&(dx, dy)| {
+                        let (nx, ny) = (x as i64 + dx, y as i64 + dy);
+                        (0..i64::from(w)).contains(&nx)
+                            && (0..i64::from(h)).contains(&ny)
+                            && px(x, y)
+                                .iter()
+                                .zip(px(nx as u32, ny as u32))
+                                .any(|(a, b)| (f32::from(*a) - f32::from(*b)).abs() > edge)
+                    })
+                };
+                for edge in [-1.0, 0.0, 0.5, 1.0, 2.0, 25.5, 254.9, 255.0, f32::NAN] {
                     for y in 0..h {
+                        let want: Vec<bool> = (0..w).map(|x| edge_at(x, y, edge)).collect();
                         let row = frame.edge_row(&base, y, edge);
-                        let want: Vec<bool> =
-                            (0..w).map(|x| frame.is_edge(&base, x, y, edge)).collect();
                         assert_eq!(row, want, "{w}x{h} flat {flat} edge {edge} row {y}");
+                        let least = least_above(edge);
+                        let one: Vec<bool> =
+                            (0..w).map(|x| frame.is_edge(&base, x, y, least)).collect();
+                        assert_eq!(one, want, "{w}x{h} flat {flat} edge {edge} row {y}");
                     }
                 }
             }
