@@ -161,6 +161,10 @@ fn left_out<S: Simd>(s: S, set: &NearSet, (p, q, d, d2): (&L3<S>, &L3<S>, &L3<S>
     // (No closure: one left as a call is not compiled for AVX2.)
     let mut through = [0u8; 2];
     for (side, balls) in [before, after].into_iter().enumerate() {
+        if side == 1 && through[0] == 0 {
+            // No segment passes through a ball where it was.
+            return 0;
+        }
         for &(c, r) in balls {
             let (inner, outer) = (r - pad, r + pad);
             let w = [
