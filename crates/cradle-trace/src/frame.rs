@@ -273,15 +273,27 @@ impl<'a> Frame<'a> {
 
     /// Whether pixel `(x, y)` of a one-sample picture differs from a 4-neighbour
     /// by more than the edge threshold in some channel, given the least byte
-    /// difference above it ([`least_above`]).
+    /// difference above it ([`least_above`]). The three channels are compared
+    /// at once, each in a 16-bit lane of a word ([`spread`]): with `M` the top
+    /// bit of each lane, `(a | M) - (b + least)` keeps a lane's top bit exactly
+    /// where `a - b >= least` (the lanes' values stay within 510 of `M`, so
+    /// nothing borrows across lanes), and the same with `a` and `b` swapped.
     pub(crate) fn is_edge(&self, base: &[u8], x: u32, y: u32, least: u16) -> bool {
+        if least > 255 {
+            return false;
+        }
         let w = self.width as usize;
         let i = (y as usize * w + x as usize) * 4;
-        let here = &base[i..i + 3];
+        let at = |j: usize| {
+            let p = &base[j..j + 3];
+            spread([p[0], p[1], p[2]])
+        };
+        let l = spread([least as u8; 3]);
+        let here = at(i);
+        let (here_m, here_l) = ((here | TOPS) - l, here + l);
         let differs = |j: usize| {
-            let there = &base[j..j + 3];
-            let most = here.iter().zip(there).map(|(a, b)| a.abs_diff(*b)).max();
-            most.is_some_and(|d| u16::from(d) >= least)
+            let there = at(j);
+            ((here_m - there) | ((there | TOPS) - here_l)) & TOPS != 0
         };
         (x > 0 && differs(i - 4))
             || (x + 1 < self.width && differs(i + 4))
@@ -321,6 +333,14 @@ impl<'a> Frame<'a> {
         }
         out
     }
+}
+
+/// The top bit of each of the three 16-bit lanes of [`spread`].
+const TOPS: u64 = 0x0000_8000_8000_8000;
+
+/// Three bytes, each in a 16-bit lane of a word (the first lowest).
+fn spread(c: [u8; 3]) -> u64 {
+    u64::from(c[0]) | u64::from(c[1]) << 16 | u64::from(c[2]) << 32
 }
 
 /// The least byte difference `d` with `f32::from(d) > edge` (256 when none
