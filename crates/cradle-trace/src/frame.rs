@@ -385,7 +385,7 @@ mod tests {
                 let edge_at = |x: u32, y: u32, edge: f32| {
                     let n = [(-1, 0), (1, 0), (0, -1), (0, 1)];
                     n.iter().any(|&(dx, dy)| {
-                        let (nx, ny) = (x as i64 + dx, y as i64 + dy);
+                        let (nx, ny) = (i64::from(x) + dx, i64::from(y) + dy);
                         (0..i64::from(w)).contains(&nx)
                             && (0..i64::from(h)).contains(&ny)
                             && px(x, y)
