@@ -34,25 +34,10 @@ fn casters(
     out: &mut Vec<(usize, Aabb)>,
 ) {
     out.clear();
-    let centre = (from.min + from.max) * 0.5;
-    let (dir, t_max) = match *light {
-        Light::Ambient { .. } => return,
-        // t in 0..=1 along the segment to the light.
-        Light::Point { position, .. } => (position - centre, 1.0),
-        Light::Directional { direction, .. } => (-direction, f32::INFINITY),
+    let Some(reach) = Reach::new(from, light) else {
+        return;
     };
-    let reach = if t_max.is_finite() { dir.length() } else { 0.0 };
-    let scale = centre.abs().max_element() + reach;
-    let widen = 0.5 * (from.max - from.min).length() + 1e-4 + 1e-4 * scale;
-    let inv = dir.recip();
-    let meets = |b: &Aabb| {
-        let t1 = (b.min - widen - centre) * inv;
-        let t2 = (b.max + widen - centre) * inv;
-        let near = t1.min(t2).max_element().max(0.0);
-        let far = t1.max(t2).min_element().min(t_max);
-        // NaN (an axis the segment runs along, at a slab's edge): keep it.
-        near <= far || near.is_nan() || far.is_nan()
-    };
+    let meets = |b: &Aabb| reach.meets(b);
     match bvh {
         Some((bvh, boxes)) => {
             let mut ks = Vec::new();
@@ -62,6 +47,47 @@ fn casters(
             out.extend(ks.into_iter().map(|k| bounded[k]));
         }
         None => out.extend(bounded.iter().filter(|(_, b)| meets(b))),
+    }
+}
+
+/// Where a shadow ray towards a light from a point of a box can run: near the
+/// segment from the box's centre to the light (or along a directional light),
+/// within the box's half-diagonal and margins for the lift and for rounding
+/// ([`casters`]). `None` for ambient light, which casts no shadow rays.
+struct Reach {
+    centre: Vec3,
+    inv: Vec3,
+    widen: f32,
+    t_max: f32,
+}
+
+impl Reach {
+    fn new(from: Aabb, light: &Light) -> Option<Self> {
+        let centre = (from.min + from.max) * 0.5;
+        let (dir, t_max) = match *light {
+            Light::Ambient { .. } => return None,
+            // t in 0..=1 along the segment to the light.
+            Light::Point { position, .. } => (position - centre, 1.0),
+            Light::Directional { direction, .. } => (-direction, f32::INFINITY),
+        };
+        let reach = if t_max.is_finite() { dir.length() } else { 0.0 };
+        let scale = centre.abs().max_element() + reach;
+        Some(Self {
+            centre,
+            inv: dir.recip(),
+            widen: 0.5 * (from.max - from.min).length() + 1e-4 + 1e-4 * scale,
+            t_max,
+        })
+    }
+
+    /// Whether an object with box `b` can lie in the reach.
+    fn meets(&self, b: &Aabb) -> bool {
+        let t1 = (b.min - self.widen - self.centre) * self.inv;
+        let t2 = (b.max + self.widen - self.centre) * self.inv;
+        let near = t1.min(t2).max_element().max(0.0);
+        let far = t1.max(t2).min_element().min(self.t_max);
+        // NaN (an axis the segment runs along, at a slab's edge): keep it.
+        near <= far || near.is_nan() || far.is_nan()
     }
 }
 
@@ -171,6 +197,20 @@ impl Casters {
             lights: lights.len(),
             chunks,
             ranges,
+        })
+    }
+
+    /// Whether the casters of an object with `shape` for `lights` are what
+    /// they were when only objects whose boxes (where they were and where
+    /// they are) are `moved` have moved since, the object not among them:
+    /// none of its lists can hold one of those boxes, so each holds the same
+    /// objects, with the same boxes.
+    pub(crate) fn keep_for(shape: &Shape, lights: &[Light], moved: &[Aabb]) -> bool {
+        let boxes = piece_boxes(shape);
+        lights.iter().all(|l| {
+            boxes.iter().all(|&b| {
+                Reach::new(b, l).is_none_or(|reach| !moved.iter().any(|m| reach.meets(m)))
+            })
         })
     }
 

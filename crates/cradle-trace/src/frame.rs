@@ -6,12 +6,13 @@
 //! below the drivers (`render`, `adaptive`, `incremental`).
 
 use super::camera::CameraRays;
+use super::casters::Casters;
 use super::color::srgb8;
 use super::geometry::Aabb;
 use super::material::radiance_bound;
 use super::motion::{Cells, Motion, MotionGrid, NoRecord, Record, RowMotion, Seg};
 use super::packet::{LANES, LaneNotes, Packet};
-use super::prepared::Prepared;
+use super::prepared::{Kept, Prepared};
 use super::reference::{self, Plain};
 use super::sampling::sample_offsets;
 use super::scene::Scene;
@@ -74,8 +75,19 @@ pub(crate) struct Frame<'a> {
 impl<'a> Frame<'a> {
     /// `track`: note which pixels' rays enter the motion box (incremental frames only).
     pub(crate) fn new(scene: &'a Scene, options: RenderOptions, track: bool) -> Self {
+        Self::with_kept(scene, options, track, None)
+    }
+
+    /// [`Self::new`], keeping what holds of the shadow casters of the frame
+    /// before ([`Kept`]).
+    pub(crate) fn with_kept(
+        scene: &'a Scene,
+        options: RenderOptions,
+        track: bool,
+        kept: Option<Kept>,
+    ) -> Self {
         let prepared = Prepared::new(scene)
-            .with_shadow_culling(options.shadow_culling)
+            .with_shadow_culling_kept(options.shadow_culling, kept)
             .with_bvh(options.bvh);
         let bound = radiance_bound(scene);
         let camera = CameraRays::new(&scene.camera, scene.size.0, scene.size.1);
@@ -166,6 +178,11 @@ impl<'a> Frame<'a> {
         let (c, mask) = self.pixel(at, first, offsets, segs);
         px.copy_from_slice(&[srgb8(c.x), srgb8(c.y), srgb8(c.z), 255]);
         (mask, c)
+    }
+
+    /// The shadow casters, taken out for the next frame ([`Kept`]).
+    pub(crate) fn take_casters(&mut self) -> Option<Vec<Option<Casters>>> {
+        self.prepared.take_casters()
     }
 
     /// Adaptive anti-aliasing's edge threshold (a byte difference), if on.

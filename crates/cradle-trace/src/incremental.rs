@@ -5,14 +5,16 @@
 use super::adaptive::Layers;
 use super::adaptive::{adaptive_full, adaptive_next};
 use super::camera::CameraRays;
+use super::casters::Casters;
 use super::color::Image;
 use super::frame::{Frame, RenderOptions};
-use super::geometry::{Aabb, midway};
+use super::geometry::{Aabb, bounds, midway};
 use super::motion::RowMotion;
 use super::motion::{Cells, MotionGrid, Near, NearSet};
+use super::prepared::Kept;
 use super::render::image;
 use super::retrace::{Moved, Piece, Spans, retrace_row};
-use super::scene::{Scene, Shape};
+use super::scene::{Light, Scene, Shape};
 use glam::Vec3;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -196,6 +198,9 @@ pub struct Incremental {
     since: Option<u64>,
     /// Per row, the pixels the last frame may have changed ([`Changes::rows`]).
     written: Vec<[u32; 2]>,
+    /// The last frame's shadow casters and the lights they were found for:
+    /// the next frame keeps those that still hold ([`Kept`]).
+    casters: Option<(Vec<Option<Casters>>, Vec<Light>)>,
 }
 
 /// The objects of `list` that moved from `before` (their shapes in the last
@@ -396,8 +401,9 @@ impl Incremental {
         };
         // What moved since the last frame, found while the frame is prepared
         // (from the same camera and grid as the frame's).
-        let (frame, moved) = rayon::join(
-            || Frame::new(scene, RenderOptions::FAST, true),
+        let kept = self.kept(scene, list);
+        let (mut frame, moved) = rayon::join(
+            || Frame::with_kept(scene, RenderOptions::FAST, true, kept),
             || {
                 let (min, max) = scene.motion_bounds?;
                 let grid = MotionGrid::new(Aabb { min, max });
@@ -459,7 +465,30 @@ impl Incremental {
             self.shapes = scene.objects.iter().map(|o| o.shape).collect();
         }
         self.id = id;
+        self.casters = frame.take_casters().map(|c| (c, scene.lights.clone()));
         self.image.as_ref().expect("rendered above")
+    }
+
+    /// What the next frame, of `scene` with the objects of `list` moved since
+    /// the last one, may keep of the last frame's shadow casters: nothing
+    /// unless the change is one this renderer follows, the lights are the
+    /// same and every moved object has a box.
+    fn kept(&mut self, scene: &Scene, list: Option<&[usize]>) -> Option<Kept> {
+        let (casters, lights) = self.casters.take()?;
+        let list = list?;
+        if lights != scene.lights {
+            return None;
+        }
+        let mut boxes = Vec::with_capacity(2 * list.len());
+        for &i in list {
+            boxes.push(bounds(self.shapes.get(i)?)?);
+            boxes.push(bounds(&scene.objects.get(i)?.shape)?);
+        }
+        Some(Kept {
+            casters,
+            moved: list.to_vec(),
+            boxes,
+        })
     }
 
     /// A frame at one ray per block ([`Scene::coarse`]): traced afresh and
@@ -470,6 +499,7 @@ impl Incremental {
         self.retraced = w as usize * h as usize;
         self.full = true;
         self.shapes.clear();
+        self.casters = None;
         self.rows.clear();
         self.layers = None;
         self.since = None;

@@ -44,6 +44,17 @@ pub struct Prepared<'a> {
     pub(crate) planes: Vec<usize>,
 }
 
+/// The shadow casters of the frame before, for the next one
+/// ([`Prepared::with_shadow_culling_kept`]): per object, with the objects that
+/// moved since and their boxes where they were and where they are. The scene
+/// is the same but for those objects' shapes (its lights too).
+#[derive(Debug)]
+pub(crate) struct Kept {
+    pub(crate) casters: Vec<Option<Casters>>,
+    pub(crate) moved: Vec<usize>,
+    pub(crate) boxes: Vec<Aabb>,
+}
+
 impl<'a> Prepared<'a> {
     /// Bounds for every object of `scene`.
     #[must_use]
@@ -307,16 +318,29 @@ impl<'a> Prepared<'a> {
     /// Turns shadow culling ([`Footprints`]) on or off (off: every shadow ray
     /// tests every object, the reference).
     #[must_use]
-    pub fn with_shadow_culling(mut self, on: bool) -> Self {
+    pub fn with_shadow_culling(self, on: bool) -> Self {
+        self.with_shadow_culling_kept(on, None)
+    }
+
+    /// [`Self::with_shadow_culling`], keeping the casters of the frame before
+    /// (`kept`) of the objects whose lists none of the objects that moved
+    /// since can enter ([`Casters::keep_for`]).
+    #[must_use]
+    pub(crate) fn with_shadow_culling_kept(mut self, on: bool, kept: Option<Kept>) -> Self {
         if !on {
             (self.footprints, self.casters) = (None, None);
             return self;
         }
         // The footprints and the casters are independent: built side by side.
         let this = &self;
-        let (footprints, casters) = rayon::join(|| this.footprints_of(), || this.casters_of());
+        let (footprints, casters) = rayon::join(|| this.footprints_of(), || this.casters_of(kept));
         (self.footprints, self.casters) = (Some(footprints), Some(casters));
         self
+    }
+
+    /// The casters, taken out for the next frame ([`Kept`]).
+    pub(crate) fn take_casters(&mut self) -> Option<Vec<Option<Casters>>> {
+        self.casters.take()
     }
 
     /// Per plane, per light, the footprints of the bounded objects.
@@ -340,9 +364,26 @@ impl<'a> Prepared<'a> {
             .collect()
     }
 
-    /// Per object, the objects that can block its shadow rays.
-    fn casters_of(&self) -> Vec<Option<Casters>> {
+    /// Per object, the objects that can block its shadow rays: those `kept`
+    /// where they still hold, the others found afresh.
+    fn casters_of(&self, kept: Option<Kept>) -> Vec<Option<Casters>> {
         let scene = self.scene;
+        let n = scene.objects.len();
+        let (old, moved_boxes) = match kept {
+            Some(Kept {
+                mut casters,
+                moved,
+                boxes,
+            }) if casters.len() == n => {
+                for &i in &moved {
+                    if let Some(c) = casters.get_mut(i) {
+                        *c = None;
+                    }
+                }
+                (casters, boxes)
+            }
+            _ => ((0..n).map(|_| None).collect(), Vec::new()),
+        };
         // Beyond a few dozen objects, find each piece's casters through a
         // hierarchy rather than by testing every object.
         let boxes: Vec<Aabb> = self.bounded.iter().map(|&(_, b)| b).collect();
@@ -352,8 +393,14 @@ impl<'a> Prepared<'a> {
         scene
             .objects
             .par_iter()
+            .zip(old)
             .enumerate()
-            .map(|(i, o)| {
+            .map(|(i, (o, old))| {
+                if let Some(c) =
+                    old.filter(|_| Casters::keep_for(&o.shape, &scene.lights, &moved_boxes))
+                {
+                    return Some(c);
+                }
                 let bvh = bvh.as_ref().map(|b| (b, &boxes[..]));
                 Casters::new((i, &o.shape), &scene.lights, &self.bounded, bvh)
             })

@@ -111,3 +111,103 @@ fn a_balls_own_mirror_ray_rounds_the_same_way_in_every_renderer() {
     assert_eq!(reference.map(|(o, _)| o), Some(1), "the rounding hit");
     assert_eq!(key(true), reference, "the hierarchy finds the same");
 }
+
+/// Casters kept from the frame before, where no moved object can enter their
+/// lists, hold the objects that casters found afresh hold: a row of balls
+/// under a rod, two point lights, the first ball swung out to the side.
+#[test]
+fn kept_casters_hold_what_fresh_ones_hold() {
+    use crate::casters::Casters;
+    use crate::geometry::bounds;
+    use crate::prepared::Kept;
+    let object = |shape| Object {
+        shape,
+        material: Material {
+            color: Vec3::splat(0.5),
+            specular: None,
+            reflective: 0.5,
+            checker: None,
+        },
+        moving: false,
+    };
+    let ball = |x: f32, y: f32| {
+        object(Shape::Sphere {
+            centre: Vec3::new(x, y, 0.0),
+            radius: 0.02,
+        })
+    };
+    let mut objects = vec![object(Shape::Plane {
+        point: Vec3::ZERO,
+        normal: Vec3::Y,
+    })];
+    objects.extend((0..5).map(|k| ball(-0.08 + 0.04 * k as f32, 0.1)));
+    objects.push(object(Shape::Cylinder {
+        a: Vec3::new(-0.2, 0.3, 0.0),
+        b: Vec3::new(0.2, 0.3, 0.0),
+        radius: 0.005,
+    }));
+    let point = |position| Light::Point {
+        position,
+        color: Vec3::ONE,
+    };
+    let before = Scene {
+        objects,
+        lights: vec![
+            point(Vec3::new(0.3, 1.0, 0.5)),
+            point(Vec3::new(-0.6, 0.8, 0.2)),
+        ],
+        ..Scene::default()
+    };
+    let mut after = before.clone();
+    after.objects[1] = ball(-0.2, 0.16);
+    let moved = [
+        bounds(&before.objects[1].shape),
+        bounds(&after.objects[1].shape),
+    ]
+    .map(|b| b.expect("a ball has a box"));
+    let kept = Kept {
+        casters: Prepared::new(&before)
+            .with_shadow_culling(true)
+            .take_casters()
+            .expect("shadow culling is on"),
+        moved: vec![1],
+        boxes: moved.to_vec(),
+    };
+    let fresh = Prepared::new(&after).with_shadow_culling(true);
+    let reused = Prepared::new(&after).with_shadow_culling_kept(true, Some(kept));
+    let keeps: Vec<bool> = after
+        .objects
+        .iter()
+        .map(|o| Casters::keep_for(&o.shape, &after.lights, &moved))
+        .collect();
+    assert!(keeps[2..].iter().any(|&k| k), "no object keeps its casters");
+    assert!(
+        keeps[2..].iter().any(|&k| !k),
+        "every object keeps its casters"
+    );
+    let mut lists = 0;
+    for i in 1..after.objects.len() {
+        let (f, r) = (
+            fresh.casters(i).expect("bounded"),
+            reused.casters(i).expect("bounded"),
+        );
+        for light in 0..after.lights.len() {
+            for piece in 0..16 {
+                for outside in [false, true] {
+                    let items = |c: &Casters| {
+                        let mut v: Vec<usize> = c
+                            .list(light, piece.min(c.axis().3 - 1), outside)
+                            .expect("a point light's list")
+                            .items()
+                            .collect();
+                        v.sort_unstable();
+                        v
+                    };
+                    assert_eq!(items(f), items(r), "object {i} light {light} piece {piece}");
+                    lists += 1;
+                }
+            }
+        }
+    }
+    assert!(lists > 0);
+}
