@@ -6,9 +6,9 @@ use crate::prepared::Prepared;
 use crate::scene::{Light, Material, Object, Scene, Shape};
 use glam::Vec3;
 
-/// A floor (object 0, y = 0) and a ball above it (object 1), one point light.
-fn floor_and_ball() -> Scene {
-    let object = |shape| Object {
+/// A static grey object of `shape`, half a mirror.
+fn object(shape: Shape) -> Object {
+    Object {
         shape,
         material: Material {
             color: Vec3::splat(0.5),
@@ -17,7 +17,11 @@ fn floor_and_ball() -> Scene {
             checker: None,
         },
         moving: false,
-    };
+    }
+}
+
+/// A floor (object 0, y = 0) and a ball above it (object 1), one point light.
+fn floor_and_ball() -> Scene {
     Scene {
         objects: vec![
             object(Shape::Plane {
@@ -120,16 +124,6 @@ fn kept_casters_hold_what_fresh_ones_hold() {
     use crate::casters::Casters;
     use crate::geometry::bounds;
     use crate::prepared::Kept;
-    let object = |shape| Object {
-        shape,
-        material: Material {
-            color: Vec3::splat(0.5),
-            specular: None,
-            reflective: 0.5,
-            checker: None,
-        },
-        moving: false,
-    };
     let ball = |x: f32, y: f32| {
         object(Shape::Sphere {
             centre: Vec3::new(x, y, 0.0),
