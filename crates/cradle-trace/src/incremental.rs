@@ -38,7 +38,8 @@ pub struct Changes<'a> {
     pub rows: &'a [[u32; 2]],
 }
 
-/// The last picture of a renderer and which bytes its frame changed, lent out
+/// The last picture of a renderer and which bytes its frame changed: what
+/// [`Incremental`] keeps of its last frame, and lends out
 /// ([`Incremental::lend`]) so that another thread reads it while the renderer
 /// prepares its next frame ([`Incremental::render_lent`]), which takes it back
 /// before it writes a pixel: the window copies the picture's changes to its
@@ -46,7 +47,9 @@ pub struct Changes<'a> {
 #[derive(Debug)]
 pub struct Lent {
     image: Image,
+    /// Per row, the pixels the frame may have changed ([`Changes::rows`]).
     written: Vec<[u32; 2]>,
+    /// The picture's number and the one it started from ([`Changes`]).
     id: u64,
     since: Option<u64>,
 }
@@ -62,6 +65,16 @@ impl Lent {
     #[must_use]
     pub fn changes(&self) -> Changes<'_> {
         Changes::of(self.id, self.since, &self.written)
+    }
+
+    /// Picture `id`, traced whole (no picture before it to change).
+    fn whole(image: Image, id: u64) -> Self {
+        Self {
+            image,
+            written: Vec::new(),
+            id,
+            since: None,
+        }
     }
 }
 
@@ -184,7 +197,9 @@ pub struct Incremental {
     last: Option<Scene>,
     /// The objects' shapes in the last frame: where the moved ones were.
     shapes: Vec<Shape>,
-    image: Option<Image>,
+    /// The last picture and its changes (`None` before the first, and while
+    /// it is lent out).
+    picture: Option<Lent>,
     /// Per row, each pixel's motion cells and segments when last traced.
     rows: Vec<RowMotion>,
     full: bool,
@@ -193,11 +208,6 @@ pub struct Incremental {
     /// With adaptive anti-aliasing: the layers its frames keep (then `rows` is
     /// unused).
     layers: Option<Layers>,
-    /// The picture's number and the one it started from ([`Changes`]).
-    id: u64,
-    since: Option<u64>,
-    /// Per row, the pixels the last frame may have changed ([`Changes::rows`]).
-    written: Vec<[u32; 2]>,
     /// The last frame's shadow casters and the lights they were found for:
     /// the next frame keeps those that still hold ([`Kept`]).
     casters: Option<(Vec<Option<Casters>>, Vec<Light>)>,
@@ -351,7 +361,7 @@ impl Incremental {
             .map_or(Change::Any, |last| Change::between(last, scene));
         self.render_changed(scene, &change);
         self.last = Some(scene.clone());
-        self.image.as_ref().expect("rendered above")
+        &self.picture.as_ref().expect("rendered above").image
     }
 
     /// Renders `scene` on the current rayon pool, `change` saying what changed
@@ -363,13 +373,7 @@ impl Incremental {
     /// Lends the last picture out (`None` before the first): until
     /// [`Self::render_lent`] takes it back, the renderer holds no picture.
     pub fn lend(&mut self) -> Option<Lent> {
-        let image = self.image.take()?;
-        Some(Lent {
-            image,
-            written: std::mem::take(&mut self.written),
-            id: self.id,
-            since: self.since,
-        })
+        self.picture.take()
     }
 
     /// [`Self::render_changed`] when the last picture is lent out
@@ -411,22 +415,18 @@ impl Incremental {
                 Some(moved(&grid, &cam, (&self.shapes, scene), list?))
             },
         );
-        if self.image.is_none()
-            && let Some(lent) = back()
-        {
-            self.image = Some(lent.image);
-            self.written = lent.written;
+        if self.picture.is_none() {
+            self.picture = back();
         }
         let adaptive = frame.edge();
-        let reuse = self.image.is_some() && adaptive.is_some() == self.layers.is_some();
+        let reuse = self.picture.is_some() && adaptive.is_some() == self.layers.is_some();
         self.full = !reuse;
         let id = NEXT_ID.fetch_add(1, Ordering::Relaxed);
-        self.since = None;
-        if let (true, Some(moved)) = (reuse, moved) {
-            let img = self.image.as_mut().expect("checked above");
-            self.written.resize(img.height as usize, [0, 0]);
+        if let (true, Some(moved), Some(pic)) = (reuse, moved, self.picture.as_mut()) {
+            let img = &mut pic.image;
+            pic.written.resize(img.height as usize, [0, 0]);
             if let (Some(threshold), Some(layers)) = (adaptive, self.layers.as_mut()) {
-                let out = (img, &mut self.written[..]);
+                let out = (img, &mut pic.written[..]);
                 self.retraced = adaptive_next(&frame, threshold, layers, out, &moved);
             } else {
                 let (stride, w) = (img.width as usize * 4, img.width);
@@ -434,7 +434,7 @@ impl Incremental {
                     .rgba
                     .par_chunks_exact_mut(stride)
                     .zip(self.rows.par_iter_mut())
-                    .zip(self.written.par_iter_mut())
+                    .zip(pic.written.par_iter_mut())
                     .enumerate()
                     .map(|(y, ((row, rm), written))| {
                         let at = (&moved, frame.offsets());
@@ -445,7 +445,7 @@ impl Incremental {
                     })
                     .sum();
             }
-            self.since = Some(self.id);
+            (pic.since, pic.id) = (Some(pic.id), id);
             for &i in list.unwrap_or_default() {
                 self.shapes[i] = scene.objects[i].shape;
             }
@@ -460,13 +460,12 @@ impl Incremental {
             self.retraced = img.width as usize * img.height as usize;
             self.rows = rows;
             self.layers = layers;
-            self.image = Some(img);
+            self.picture = Some(Lent::whole(img, id));
             self.full = true;
             self.shapes = scene.objects.iter().map(|o| o.shape).collect();
         }
-        self.id = id;
         self.casters = frame.take_casters().map(|c| (c, scene.lights.clone()));
-        self.image.as_ref().expect("rendered above")
+        &self.picture.as_ref().expect("rendered above").image
     }
 
     /// What the next frame, of `scene` with the objects of `list` moved since
@@ -502,22 +501,20 @@ impl Incremental {
         self.casters = None;
         self.rows.clear();
         self.layers = None;
-        self.since = None;
-        self.id = NEXT_ID.fetch_add(1, Ordering::Relaxed);
-        self.image.insert(img)
+        let id = NEXT_ID.fetch_add(1, Ordering::Relaxed);
+        &self.picture.insert(Lent::whole(img, id)).image
     }
 
     /// Which bytes the last frame may have changed (`None` before the first).
     #[must_use]
     pub fn changes(&self) -> Option<Changes<'_>> {
-        self.image.as_ref()?;
-        Some(Changes::of(self.id, self.since, &self.written))
+        self.picture.as_ref().map(Lent::changes)
     }
 
     /// The last picture rendered.
     #[must_use]
     pub fn image(&self) -> Option<&Image> {
-        self.image.as_ref()
+        self.picture.as_ref().map(Lent::image)
     }
 
     /// Whether the last frame was traced in full.
@@ -529,10 +526,7 @@ impl Incremental {
     /// Share of pixels the last frame re-traced (0..=1).
     #[must_use]
     pub fn dynamic_share(&self) -> f64 {
-        let total = self
-            .image
-            .as_ref()
-            .map_or(1, |i| (i.width * i.height) as usize);
+        let total = self.image().map_or(1, |i| (i.width * i.height) as usize);
         self.retraced as f64 / total.max(1) as f64
     }
 }
