@@ -319,10 +319,12 @@ impl<'a> Frame<'a> {
     }
 
     /// [`Self::is_edge`] of every pixel of row `y`: each pair of neighbours
-    /// compared once, by a table of the byte differences above `edge`.
+    /// compared once, by a table of the byte differences above `edge` (from
+    /// [`least_above`], as [`Self::is_edge`] compares).
     pub(crate) fn edge_row(&self, base: &[u8], y: u32, edge: f32) -> Vec<bool> {
         let w = self.width as usize;
-        let above: [bool; 256] = std::array::from_fn(|d| f32::from(d as u8) > edge);
+        let least = least_above(edge);
+        let above: [bool; 256] = std::array::from_fn(|d| d as u16 >= least);
         let differs = |a: &[u8], b: &[u8]| {
             above[usize::from(a[0].abs_diff(b[0]))]
                 | above[usize::from(a[1].abs_diff(b[1]))]
