@@ -45,10 +45,10 @@ pub(crate) struct Layers {
     base: Image,
     /// Its rows' motion record.
     base_rows: Vec<RowMotion>,
-    /// Per pixel (row-major), whether it is an edge of `base`.
-    edge: Vec<bool>,
-    /// Its linear colours (row-major): sample 0 of an edge pixel.
-    lin: Vec<Vec3>,
+    /// Per row, per pixel, whether it is an edge of `base`.
+    edge: Vec<Vec<bool>>,
+    /// Per row, its linear colours: sample 0 of an edge pixel.
+    lin: Vec<Vec<Vec3>>,
     /// Per row, the motion record of the edge pixels' other samples (others:
     /// none).
     edge_rows: Vec<RowMotion>,
@@ -101,12 +101,19 @@ pub(crate) fn adaptive_full(
         })
         .into_iter()
         .unzip();
-    let lin = lin.concat();
-    let mut img = base.clone();
+    // The picture is the base's bytes but at the edges, copied row by row
+    // beside the rows' supersampling.
+    let mut img = Image {
+        rgba: vec![0; base.rgba.len()],
+        ..base
+    };
+    let stride = n * 4;
     let (edge_rows, edge): (Vec<RowMotion>, Vec<Vec<bool>>) = img
         .for_rows(parallel, |y, row| {
+            let y_at = y as usize;
+            row.copy_from_slice(&base.rgba[y_at * stride..(y_at + 1) * stride]);
             let flags = frame.edge_row(&base.rgba, y, threshold);
-            let lin = &lin[y as usize * n..(y as usize + 1) * n];
+            let lin = &lin[y_at];
             let mut rm = RowMotion::new(n, track);
             let xs: Vec<usize> = (0..n).filter(|&x| flags[x]).collect();
             let mut samples = Supersamples::default();
@@ -133,7 +140,6 @@ pub(crate) fn adaptive_full(
         })
         .into_iter()
         .unzip();
-    let edge = edge.concat();
     let layers = Layers {
         base,
         base_rows,
@@ -180,7 +186,7 @@ pub(crate) fn adaptive_next(
         .rgba
         .par_chunks_exact_mut(stride)
         .zip(layers.base_rows.par_iter_mut())
-        .zip(layers.lin.par_chunks_exact_mut(w))
+        .zip(layers.lin.par_iter_mut())
         .zip(
             layers
                 .dirty
@@ -206,7 +212,7 @@ pub(crate) fn adaptive_next(
     let least = least_above(threshold);
     layers
         .edge
-        .par_chunks_exact_mut(w)
+        .par_iter_mut()
         .zip(layers.flips.par_iter_mut())
         .enumerate()
         .for_each(|(y, (flags, flipped))| {
@@ -238,15 +244,14 @@ pub(crate) fn adaptive_next(
         .zip(written.par_iter_mut())
         .enumerate()
         .map_init(Scratch::default, |scratch, (y, ((row, rm), written))| {
-            let span = y * w..(y + 1) * w;
             let base = Base {
                 bytes: &base[y * stride..(y + 1) * stride],
-                lin: &lin[span.clone()],
+                lin: &lin[y],
                 dirty: &dirty[y],
                 changed: &xs[y],
             };
             let at = (y as u32, row, rm);
-            let (n, xs) = final_row(frame, at, &base, (&edge[span], &flips[y]), moved, scratch);
+            let (n, xs) = final_row(frame, at, &base, (&edge[y], &flips[y]), moved, scratch);
             *written = xs;
             n
         })
