@@ -131,6 +131,7 @@ impl RowMotion {
     /// Traces pixel `k` again: `trace` appends its segments and returns its cells
     /// (and what the caller wants back); they replace the old ones, in their
     /// place when they are no more.
+    #[inline]
     pub(crate) fn retrace<R>(
         &mut self,
         k: usize,
