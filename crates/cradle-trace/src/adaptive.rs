@@ -16,7 +16,7 @@
 
 use super::bits::{BitRoom, ascending};
 use super::color::Image;
-use super::frame::{Frame, least_above};
+use super::frame::{Edges, Frame, least_above};
 use super::motion::RowMotion;
 use super::retrace::{Moved, Notes, retrace_row};
 use super::supersample::{Supersamples, supersampled};
@@ -215,7 +215,7 @@ pub(crate) fn adaptive_next(
         .par_iter_mut()
         .zip(layers.flips.par_iter_mut())
         .enumerate()
-        .for_each(|(y, (flags, flipped))| {
+        .for_each_init(Retest::default, |scratch, (y, (flags, flipped))| {
             flipped.clear();
             let beside = [y.checked_sub(1), Some(y + 1).filter(|&v| v < h)];
             let above_below = beside
@@ -228,12 +228,21 @@ pub(crate) fn adaptive_next(
             let mut room = BitRoom::new();
             let mut bits = room.row(w);
             above_below.chain(here).for_each(|x| bits.set(x));
+            // Run by run of pixels side by side.
+            let mut open: Option<std::ops::Range<usize>> = None;
+            let at = (base.as_slice(), y as u32, least);
             for x in bits.iter() {
-                let now = frame.is_edge(base, x as u32, y as u32, least);
-                if now != flags[x] {
-                    flags[x] = now;
-                    flipped.push(x as u32);
+                match &mut open {
+                    Some(r) if r.end == x => r.end += 1,
+                    _ => {
+                        if let Some(r) = open.replace(x..x + 1) {
+                            scratch.retest(frame, at, r, (flags, flipped));
+                        }
+                    }
                 }
+            }
+            if let Some(r) = open {
+                scratch.retest(frame, at, r, (flags, flipped));
             }
         });
     let (edge, dirty, flips) = (&layers.edge, &layers.dirty, &layers.flips);
@@ -257,6 +266,48 @@ pub(crate) fn adaptive_next(
         })
         .sum::<usize>();
     traced
+}
+
+/// Runs this long or longer take [`Frame::edge_run`] in the edge test
+/// again; shorter ones [`Frame::is_edge`] pixel by pixel.
+const RUN_AT_LEAST: usize = 8;
+
+/// The edge test again of runs of pixels, with the buffers it keeps.
+#[derive(Default)]
+struct Retest {
+    run: Vec<bool>,
+    edges: Edges,
+}
+
+impl Retest {
+    /// Tests pixels `xs` of row `y` of `base` again (`least`: as
+    /// [`Frame::is_edge`] takes it), and where a pixel's flag in `flags`
+    /// flips, flips it and notes the pixel in `flipped`.
+    fn retest(
+        &mut self,
+        frame: &Frame<'_>,
+        (base, y, least): (&[u8], u32, u16),
+        xs: std::ops::Range<usize>,
+        (flags, flipped): (&mut [bool], &mut Vec<u32>),
+    ) {
+        let mut note = |x: usize, now: bool| {
+            if now != flags[x] {
+                flags[x] = now;
+                flipped.push(x as u32);
+            }
+        };
+        if xs.len() < RUN_AT_LEAST {
+            for x in xs {
+                note(x, frame.is_edge(base, x as u32, y, least));
+            }
+        } else {
+            let edges = (&mut self.run, &mut self.edges);
+            frame.edge_run(base, (y, xs.clone()), least, edges);
+            for (x, &now) in xs.zip(&self.run) {
+                note(x, now);
+            }
+        }
+    }
 }
 
 /// Row `y` of the picture (`row`, with its edge record `rm`): base colours

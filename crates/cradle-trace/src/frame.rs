@@ -318,49 +318,84 @@ impl<'a> Frame<'a> {
             || (y + 1 < self.height && differs(i + 4 * w))
     }
 
-    /// [`Self::is_edge`] of every pixel of row `y`, by the byte differences
-    /// of at least [`least_above`]`(edge)`, as [`Self::is_edge`] compares.
-    /// Byte by byte over whole rows (a flag per byte: its difference from the
-    /// byte of the pixel above, below, left and right counts), then a pixel's
-    /// three colour bytes' flags together: plain loops with no table and no
-    /// branch, which the compiler does sixteen bytes at a time.
+    /// [`Self::is_edge`] of every pixel of row `y`, at threshold `edge`
+    /// ([`Self::edge_run`] of the whole row).
     pub(crate) fn edge_row(&self, base: &[u8], y: u32, edge: f32) -> Vec<bool> {
-        let w = self.width as usize;
+        let mut out = Vec::new();
+        let least = least_above(edge);
+        self.edge_run(
+            base,
+            (y, 0..self.width as usize),
+            least,
+            (&mut out, &mut Edges::default()),
+        );
+        out
+    }
+
+    /// Into `out` (emptied first), [`Self::is_edge`] of pixels `xs` of row
+    /// `y` (within the picture), given the least byte difference above the
+    /// threshold as there: byte by byte over the run and a pixel either side
+    /// (a flag per byte: its difference from the byte of the pixel above,
+    /// below, left or right counts), then each pixel's three colour bytes'
+    /// flags together. Plain loops with no table and no branch, which the
+    /// compiler does sixteen bytes at a time; `scratch` keeps their buffers.
+    pub(crate) fn edge_run(
+        &self,
+        base: &[u8],
+        (y, xs): (u32, std::ops::Range<usize>),
+        least: u16,
+        (out, scratch): (&mut Vec<bool>, &mut Edges),
+    ) {
+        out.clear();
         // Above 255 no byte difference counts: no edges.
-        let Ok(least) = u8::try_from(least_above(edge)) else {
-            return vec![false; w];
+        let Ok(least) = u8::try_from(least) else {
+            out.resize(xs.len(), false);
+            return;
         };
-        let row = |y: u32| &base[y as usize * w * 4..(y as usize + 1) * w * 4];
+        let w = self.width as usize;
+        // The run with its neighbours in the row.
+        let (a, b) = (xs.start.saturating_sub(1), (xs.end + 1).min(w));
+        let row = |y: u32| &base[(y as usize * w + a) * 4..(y as usize * w + b) * 4];
         let here = row(y);
-        let mut flags = vec![0u8; w * 4];
+        let Edges { flags, pairs } = scratch;
+        flags.clear();
+        flags.resize(here.len(), 0);
         let up = y.checked_sub(1);
         let down = (y + 1 < self.height).then_some(y + 1);
         for there in [up, down].into_iter().flatten().map(row) {
-            for ((f, a), b) in flags.iter_mut().zip(here).zip(there) {
-                *f |= u8::from(a.abs_diff(*b) >= least);
+            for ((f, p), q) in flags.iter_mut().zip(here).zip(there) {
+                *f |= u8::from(p.abs_diff(*q) >= least);
             }
         }
         // Each pair of a pixel and its right neighbour, byte by byte: the
         // flag goes to both.
-        let pairs: Vec<u8> = here
-            .iter()
-            .zip(&here[4.min(here.len())..])
-            .map(|(a, b)| u8::from(a.abs_diff(*b) >= least))
-            .collect();
-        for (f, p) in flags.iter_mut().zip(&pairs) {
+        let right = &here[4.min(here.len())..];
+        pairs.clear();
+        pairs.extend(
+            here.iter()
+                .zip(right)
+                .map(|(p, q)| u8::from(p.abs_diff(*q) >= least)),
+        );
+        for (f, p) in flags.iter_mut().zip(pairs.iter()) {
             *f |= p;
         }
-        for (f, p) in flags[4.min(here.len())..].iter_mut().zip(&pairs) {
+        for (f, p) in flags[4.min(here.len())..].iter_mut().zip(pairs.iter()) {
             *f |= p;
         }
         // A pixel's colour bytes, not its alpha.
-        flags
-            .as_chunks::<4>()
-            .0
-            .iter()
-            .map(|f| u32::from_le_bytes(*f) & 0x00ff_ffff != 0)
-            .collect()
+        out.extend(
+            flags.as_chunks::<4>().0[xs.start - a..xs.end - a]
+                .iter()
+                .map(|f| u32::from_le_bytes(*f) & 0x00ff_ffff != 0),
+        );
     }
+}
+
+/// The buffers of [`Frame::edge_run`], kept from run to run.
+#[derive(Debug, Default)]
+pub(crate) struct Edges {
+    flags: Vec<u8>,
+    pairs: Vec<u8>,
 }
 
 /// The top bit of each of the three 16-bit lanes of [`spread`].
@@ -382,10 +417,10 @@ pub(crate) fn least_above(edge: f32) -> u16 {
 
 #[cfg(test)]
 mod tests {
-    use super::{Frame, RenderOptions, least_above};
+    use super::{Edges, Frame, RenderOptions, least_above};
     use crate::scene::Scene;
 
-    /// A row's edge flags are each pixel's own edge test, on pictures of
+    /// A row's edge flags, and a run's, are each pixel's own edge test, on pictures of
     /// noise and of flat runs, at thresholds at, between and past the byte
     /// steps, and on pictures one pixel wide or high.
     #[test]
@@ -431,6 +466,15 @@ mod tests {
                         let one: Vec<bool> =
                             (0..w).map(|x| frame.is_edge(&base, x, y, least)).collect();
                         assert_eq!(one, want, "{w}x{h} flat {flat} edge {edge} row {y}");
+                        // Every run of the row on its own.
+                        let (mut run, mut scratch) = (Vec::new(), Edges::default());
+                        for x0 in 0..w as usize {
+                            for x1 in x0 + 1..=w as usize {
+                                let at = (y, x0..x1);
+                                frame.edge_run(&base, at, least, (&mut run, &mut scratch));
+                                assert_eq!(run, want[x0..x1], "{w}x{h} {edge} row {y} {x0}..{x1}");
+                            }
+                        }
                     }
                 }
             }
