@@ -25,6 +25,13 @@ case "$state" in swing|orbit|panel|graphs) ;; *) echo "STATE: swing, orbit, pane
 if [ -z "${DISPLAY:-}" ]; then
   exec "$root/tests/window/with-display.sh" "$0" "$state" "$@"
 fi
+# The app runs in a scratch folder (what it writes stays out of the tree), so
+# flags that name files here are made absolute first.
+args=()
+for a in "$@"; do
+  if [ -e "$a" ] && [[ "$a" != /* ]]; then args+=("$PWD/$a"); else args+=("$a"); fi
+done
+set -- "${args[@]}"
 work="$(mktemp -d)"
 trap 'kill "$pid" 2>/dev/null; rm -rf "$work"' EXIT
 (cd "$work" && exec "$bin" --width 1200 --height 600 "$@") >"$work/app.log" 2>&1 &
