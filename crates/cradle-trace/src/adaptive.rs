@@ -228,21 +228,9 @@ pub(crate) fn adaptive_next(
             let mut room = BitRoom::new();
             let mut bits = room.row(w);
             above_below.chain(here).for_each(|x| bits.set(x));
-            // Run by run of pixels side by side.
-            let mut open: Option<std::ops::Range<usize>> = None;
             let at = (base.as_slice(), y as u32, least);
-            for x in bits.iter() {
-                match &mut open {
-                    Some(r) if r.end == x => r.end += 1,
-                    _ => {
-                        if let Some(r) = open.replace(x..x + 1) {
-                            scratch.retest(frame, at, r, (flags, flipped));
-                        }
-                    }
-                }
-            }
-            if let Some(r) = open {
-                scratch.retest(frame, at, r, (flags, flipped));
+            for run in bits.runs() {
+                scratch.retest(frame, at, run, (flags, flipped));
             }
         });
     let (edge, dirty, flips) = (&layers.edge, &layers.dirty, &layers.flips);

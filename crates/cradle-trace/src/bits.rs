@@ -85,6 +85,19 @@ impl RowBits<'_> {
             Some(k)
         })
     }
+
+    /// The pixels in the set as runs of pixels side by side, ascending.
+    pub(crate) fn runs(&self) -> impl Iterator<Item = std::ops::Range<usize>> + '_ {
+        let mut ks = self.iter().peekable();
+        std::iter::from_fn(move || {
+            let start = ks.next()?;
+            let mut end = start + 1;
+            while ks.next_if_eq(&end).is_some() {
+                end += 1;
+            }
+            Some(start..end)
+        })
+    }
 }
 
 #[cfg(test)]
@@ -115,5 +128,20 @@ mod tests {
             assert_eq!(bits.count(), want.len(), "n = {n}");
             assert!((0..n).all(|k| bits.has(k) == want.contains(&k)), "n = {n}");
         }
+    }
+
+    /// A set reads back as its runs of neighbours, across word boundaries,
+    /// at both ends of the row, and empty as none.
+    #[test]
+    fn a_set_reads_back_as_runs_of_neighbours() {
+        let mut room = BitRoom::new();
+        let n = 200;
+        let mut bits = room.row(n);
+        assert_eq!(bits.runs().count(), 0);
+        for k in [0, 1, 2, 5, 62, 63, 64, 65, 127, 130, 199] {
+            bits.set(k);
+        }
+        let runs: Vec<_> = bits.runs().collect();
+        assert_eq!(runs, vec![0..3, 5..6, 62..66, 127..128, 130..131, 199..200]);
     }
 }
