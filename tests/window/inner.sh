@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Drives the real window (needs DISPLAY, xdotool, ImageMagick, python3): it
 # draws a non-blank picture, a left-drag lifts a ball and release swings it,
-# quick arrows keep it running, Space pauses, the wheel and drags change the
+# quick arrows keep it running, Space pauses, the window shows the framebuffer
+# pixel for pixel, the wheel and drags change the
 # view, Tab shows the control panel and the keys still work with it open, S
 # while paused shows a notice, a preset loads and Ctrl+Z undoes it, 45 rapid
 # resizes do not hang it, a saved config reloads and a bad one keeps the
@@ -78,6 +79,14 @@ line=$(grep -o "[0-9.]* fps, trace [0-9.]* ms" "$work/app.log" | tail -n 1)
 xdotool key space; sleep 1.5; shot pause1; sleep 1.0; shot pause2
 d=$(differ pause1 pause2)
 [ "$d" = "0" ] && ok "still while paused" || bad "still while paused ($d pixels changed)"
+# What the window shows is the framebuffer, pixel for pixel, after frames that
+# uploaded only what they changed: the window against S's screenshot of it.
+import -window "$wid" "$work/window.png"; xdotool key s; sleep 1
+first=$(ls "$work"/newtons-cradle-*.png 2>/dev/null | head -n 1)
+d=$([ -n "$first" ] && compare -metric AE "$work/window.png" "$first" null: 2>&1 | cut -d' ' -f1)
+[ "$d" = "0" ] && ok "the window shows the framebuffer" || bad "the window shows the framebuffer (${d:-no screenshot} pixels differ)"
+# The notice goes before the view's checks below.
+sleep 4
 
 # Paused, the picture only changes when the view does: the wheel, a right-drag.
 xdotool mousemove --window "$wid" 240 120 click 4 click 4; sleep 1.5; shot zoomed
