@@ -2,16 +2,16 @@
 # Drives the real window (needs DISPLAY, xdotool, ImageMagick, python3): it
 # draws a non-blank picture, a left-drag lifts a ball and release swings it,
 # quick arrows keep it running, Space pauses, the window shows the framebuffer
-# pixel for pixel, the wheel and drags change the
-# view, Tab shows the control panel and the keys still work with it open, S
-# while paused shows a notice, a preset loads and Ctrl+Z undoes it, 45 rapid
-# resizes do not hang it, a saved config reloads and a bad one keeps the
-# scene, S saves unique screenshots, Escape exits 0, a window destroyed
-# from outside exits 0, and heavy settings (200 balls of the realistic cradle,
-# 4K at 64 samples) still answer Escape; and the sound (sound.sh): clicks at
-# the swing's rhythm, silence when muted, a silent window without a server;
-# and the graphs (graphs.sh): G opens them, Shift+G saves a CSV; and V
-# (replay.sh): the last 10 s as an animated PNG and a WAV.
+# pixel for pixel, the wheel and drags change the view, Tab shows the control
+# panel and the keys still work with it open, S while paused shows a notice, a
+# preset loads and Ctrl+Z undoes it, 45 rapid resizes do not hang it, a saved
+# config reloads and a bad one keeps the scene, S saves unique screenshots,
+# Escape exits 0, a window destroyed from outside exits 0, and heavy settings
+# (200 balls of the realistic cradle, 4K at 64 samples) still answer Escape;
+# and the sound (sound.sh): clicks at the swing's rhythm, silence when muted,
+# a silent window without a server; and the graphs (graphs.sh): G opens them,
+# Shift+G saves a CSV; and V (replay.sh): the last 10 s as an animated PNG and
+# a WAV.
 set -uo pipefail
 bin="$1"
 work="$(mktemp -d)"
@@ -79,8 +79,8 @@ line=$(grep -o "[0-9.]* fps, trace [0-9.]* ms" "$work/app.log" | tail -n 1)
 xdotool key space; sleep 1.5; shot pause1; sleep 1.0; shot pause2
 d=$(differ pause1 pause2)
 [ "$d" = "0" ] && ok "still while paused" || bad "still while paused ($d pixels changed)"
-# What the window shows is the framebuffer, pixel for pixel, after frames that
-# uploaded only what they changed: the window against S's screenshot of it.
+# What the window shows is the framebuffer, pixel for pixel, after a run of
+# incremental frames: the window against S's screenshot of the framebuffer.
 import -window "$wid" "$work/window.png"; xdotool key s; sleep 1
 first=$(ls "$work"/newtons-cradle-*.png 2>/dev/null | head -n 1)
 d=$([ -n "$first" ] && compare -metric AE "$work/window.png" "$first" null: 2>&1 | cut -d' ' -f1)
