@@ -372,10 +372,7 @@ fn final_row(
     supersampled(frame, y, sorted, |x| lin[x], samples);
     for (&x, ((bytes, cells), span)) in sorted.iter().zip(&samples.done) {
         row[x * 4..x * 4 + 4].copy_from_slice(bytes);
-        rm.retrace(x, |out| {
-            out.extend_from_slice(&samples.segs[span.clone()]);
-            (*cells, ())
-        });
+        rm.replace(x, *cells, &samples.segs[span.clone()]);
     }
     let traced = sorted.len();
     rm.compact();

@@ -78,7 +78,6 @@ fn retrace_dirty(
     mut notes: Option<&mut Notes<'_>>,
 ) -> usize {
     let width = frame.width() as usize;
-    let track = rm.tracked();
     if let Some(n) = notes.as_deref_mut() {
         // `changed` holds at most the traced pixels (up to a run of eight
         // each), seldom more than twice as many as the dirty ones.
@@ -106,12 +105,7 @@ fn retrace_dirty(
                 let done = pk.run(x as u32, y, span);
                 let marks = pk.notes.marks();
                 for k in (x..end).filter(|k| done & (1 << (k - x)) != 0) {
-                    rm.retrace(k, |segs| {
-                        if track {
-                            pk.notes.lane_segs(k - x, segs);
-                        }
-                        (marks[k - x], ())
-                    });
+                    rm.replace(k, marks[k - x], &pk.notes.lane(k - x));
                     if let Some(n) = notes.as_deref_mut() {
                         let i = (k - x) * 4;
                         let bytes = (&before[i..i + 4], &span[i..i + 4]);
@@ -165,7 +159,6 @@ fn eye_rays(
     (row, rm): (&mut [u8], &mut RowMotion),
     mut notes: Option<&mut Notes<'_>>,
 ) {
-    let track = rm.tracked();
     let mut at = [(0.0, 0.0); LANES];
     for (a, &k) in at.iter_mut().zip(ks) {
         *a = (k as f32 + dx, y as f32 + dy);
@@ -178,12 +171,7 @@ fn eye_rays(
         let px = &mut row[k * 4..k * 4 + 4];
         let before: [u8; 4] = (&*px).try_into().expect("4 bytes");
         px.copy_from_slice(&[srgb8(c.x), srgb8(c.y), srgb8(c.z), 255]);
-        rm.retrace(k, |segs| {
-            if track {
-                pk.notes.lane_segs(i, segs);
-            }
-            (marks[i], ())
-        });
+        rm.replace(k, marks[i], &pk.notes.lane(i));
         if let Some(n) = notes.as_deref_mut() {
             n.note(k, (&before, px), c);
         }

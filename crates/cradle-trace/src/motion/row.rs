@@ -140,20 +140,45 @@ impl RowMotion {
         let start = self.segs.len();
         let (cells, out) = trace(&mut self.segs);
         self.cells[k] = cells;
-        if let Some(span) = self.span.get_mut(k) {
-            let (a, b, n) = (span[0] as usize, span[1] as usize, self.segs.len() - start);
-            if n <= b - a {
-                // They fit where the old ones were.
-                self.segs.copy_within(start.., a);
-                self.segs.truncate(start);
-                self.garbage += b - a - n;
-                *span = [a as u32, (a + n) as u32];
-            } else {
-                self.garbage += b - a;
-                *span = [start as u32, self.segs.len() as u32];
-            }
+        if k < self.span.len()
+            && let Some(a) = self.place(k, start, self.segs.len() - start)
+        {
+            self.segs.copy_within(start.., a);
+            self.segs.truncate(start);
         }
         out
+    }
+
+    /// Pixel `k` traced again elsewhere: its cells are `cells` and its
+    /// segments `new`, which replace the old ones as [`Self::retrace`] would
+    /// (written once, straight to where they go).
+    #[inline]
+    pub(crate) fn replace(&mut self, k: usize, cells: Cells, new: &[Seg]) {
+        self.cells[k] = cells;
+        if k < self.span.len() {
+            let end = self.segs.len();
+            match self.place(k, end, new.len()) {
+                Some(a) => self.segs[a..a + new.len()].copy_from_slice(new),
+                None => self.segs.extend_from_slice(new),
+            }
+        }
+    }
+
+    /// Where the `n` new segments of pixel `k` (a tracked pixel) go: their
+    /// old place when they fit in it (`Some` of its start), else from `end`,
+    /// the buffer's end (`None`); notes its span and the garbage left.
+    fn place(&mut self, k: usize, end: usize, n: usize) -> Option<usize> {
+        let span = &mut self.span[k];
+        let (a, b) = (span[0] as usize, span[1] as usize);
+        if n <= b - a {
+            self.garbage += b - a - n;
+            *span = [a as u32, (a + n) as u32];
+            Some(a)
+        } else {
+            self.garbage += b - a;
+            *span = [end as u32, (end + n) as u32];
+            None
+        }
     }
 
     /// Clears pixel `k`: no cells, no segments.

@@ -73,6 +73,11 @@ impl LaneNotes {
         out.extend_from_slice(&self.segs.borrow()[i]);
     }
 
+    /// The segments lane `i` noted in the last packet.
+    pub(crate) fn lane(&self, i: usize) -> std::cell::Ref<'_, [Seg]> {
+        std::cell::Ref::map(self.segs.borrow(), |segs| segs[i].as_slice())
+    }
+
     /// What `f` returns, given a `Motion` for lane `i` (lent the lane's
     /// segments, to append to) whose cells then go to the lane's in a tracked
     /// frame: the scalar path's tracing of one lane.

@@ -83,3 +83,46 @@ fn compaction_keeps_each_pixels_segments_and_drops_the_rest() {
     assert_eq!(rm.garbage, 0);
     assert_eq!(rm.segs.len(), 11);
 }
+
+#[test]
+fn segments_replaced_from_elsewhere_land_where_a_retrace_puts_them() {
+    // Pixel k's segments are told apart by their start point (k, j, 0).
+    let seg = |k: usize, j: usize| Seg {
+        a: Vec3::new(k as f32, j as f32, 0.0),
+        b: Vec3::ONE,
+    };
+    let fresh = || {
+        let mut rm = RowMotion::new(6, true);
+        for k in 0..6 {
+            rm.begin(true);
+            rm.segs.extend((0..2).map(|j| seg(k, j)));
+        }
+        rm.begin(true);
+        rm.seal();
+        rm
+    };
+    let (mut traced, mut replaced) = (fresh(), fresh());
+    // Fewer, as many and more segments than before (the last appended),
+    // and none.
+    for (k, n) in [(1, 1), (2, 2), (4, 3), (5, 0)] {
+        let new: Vec<Seg> = (0..n).map(|j| seg(k, 10 + j)).collect();
+        traced.retrace(k, |out| {
+            out.extend_from_slice(&new);
+            (1 << k, ())
+        });
+        replaced.replace(k, 1 << k, &new);
+        assert_eq!(replaced.of(k), &new[..], "pixel {k}");
+    }
+    assert_eq!(replaced.segs, traced.segs);
+    assert_eq!(replaced.span, traced.span);
+    assert_eq!(replaced.cells, traced.cells);
+    // 1 + 0 + 2 + 2 segments no pixel refers to: pixel 4's old two among them.
+    assert_eq!(replaced.garbage, 5);
+    assert_eq!(traced.garbage, 5);
+    assert_eq!(replaced.segs.len(), 15);
+    // A record whose segments were dropped keeps cells only.
+    let mut bare = fresh();
+    bare.untrack();
+    bare.replace(3, 8, &[seg(3, 0)]);
+    assert_eq!((bare.cells[3], bare.segs.len()), (8, 0));
+}
