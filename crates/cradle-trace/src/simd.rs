@@ -147,6 +147,9 @@ pub(crate) trait Simd: Copy {
     /// Eight RGBA pixels of the linear colours `r`, `g`, `b`: the bytes of
     /// [`crate::color::rgba8_lanes`].
     fn rgba8(self, r: &[f32; 8], g: &[f32; 8], b: &[f32; 8]) -> [u32; 8];
+    /// Asks the CPU to bring the cache line of `v` in (a hint: no effect on
+    /// any value; the portable build does nothing).
+    fn prefetch<T>(self, v: &T);
     /// Runs `k` in this build: compiled for AVX2 in the AVX2 build (the one
     /// entry from code built for any x86-64 into code built for AVX2), inlined
     /// in the portable one.

@@ -4,6 +4,7 @@
 //! incremental frame.
 
 use super::{Cells, Seg};
+use crate::simd::Simd;
 /// Blocks per super-block of [`RowMotion::supers`] (`tuning`).
 pub(crate) use crate::tuning::SUPER;
 
@@ -119,6 +120,23 @@ impl RowMotion {
             if self.span.len() < self.cells.len() {
                 self.span.push([n, n]);
             }
+        }
+    }
+
+    /// Asks the CPU, in lane build `s`, for pixel `k`'s first segment (none
+    /// past the row or its segments): a hint, for a reader about to get there.
+    #[expect(
+        clippy::inline_always,
+        reason = "inlined into the filter's build, so the AVX2 one prefetches"
+    )]
+    #[inline(always)]
+    pub(crate) fn prefetch<S: Simd>(&self, s: S, k: usize) {
+        if let Some(seg) = self
+            .span
+            .get(k)
+            .and_then(|&[a, _]| self.segs.get(a as usize))
+        {
+            s.prefetch(seg);
         }
     }
 

@@ -8,6 +8,7 @@ use crate::bits::BitRoom;
 use crate::motion::{BLOCK, RowMotion, SUPER};
 use crate::motion::{Batch, Cells, NearSet};
 use crate::simd::{Build, Kernel, Simd};
+use crate::tuning::PREFETCH_AHEAD;
 use glam::Vec3;
 
 /// What moved since the last frame: the cells of the moved objects, where they
@@ -143,6 +144,11 @@ impl Moved {
     ) {
         let cells_only = !rm.tracked() || self.coarse;
         for k in xs {
+            // The segments of a pixel further on, on their way (every pixel
+            // of the block: the candidates among them are not known yet).
+            if !cells_only {
+                rm.prefetch(s, k + PREFETCH_AHEAD);
+            }
             while *r < runs.len() && runs[*r].1 as usize <= k {
                 *r += 1;
             }

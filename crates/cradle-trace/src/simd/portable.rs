@@ -170,6 +170,8 @@ impl Simd for Portable {
         k.run(self)
     }
     #[inline(always)]
+    fn prefetch<T>(self, _: &T) {}
+    #[inline(always)]
     fn select(m: Bits, a: P8, b: P8) -> P8 {
         let mut out = b.0;
         for (i, (o, a)) in out.iter_mut().zip(a.0).enumerate() {
