@@ -255,7 +255,7 @@ impl<'a> Frame<'a> {
                     if done & (1 << (i - x)) != 0 {
                         if track {
                             rm.cells[i as usize] = marks[(i - x) as usize];
-                            pk.notes.lane_segs((i - x) as usize, &mut rm.segs);
+                            rm.segs.extend_from_slice(&pk.notes.lane((i - x) as usize));
                         }
                         continue;
                     }

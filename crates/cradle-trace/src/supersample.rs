@@ -81,7 +81,7 @@ pub(crate) fn supersampled(
                 o.1 += colors[i];
                 o.2 |= marks[i];
             }
-            pk.notes.lane_segs(i, segs);
+            segs.extend_from_slice(&pk.notes.lane(i));
         }
     }
     if let Some(done) = open {

@@ -68,11 +68,6 @@ impl LaneNotes {
         self.marks.get()
     }
 
-    /// Appends the segments lane `i` noted in the last packet to `out`.
-    pub(crate) fn lane_segs(&self, i: usize, out: &mut Vec<Seg>) {
-        out.extend_from_slice(&self.segs.borrow()[i]);
-    }
-
     /// The segments lane `i` noted in the last packet.
     pub(crate) fn lane(&self, i: usize) -> std::cell::Ref<'_, [Seg]> {
         std::cell::Ref::map(self.segs.borrow(), |segs| segs[i].as_slice())
