@@ -233,16 +233,6 @@ impl Hit {
     }
 }
 
-/// An object where it was and where it is as one shape: the segment between
-/// the midpoints of the matching ends of `was` and `is` (a ball's centre as
-/// both ends), and half the larger distance between matching ends. Every
-/// point of either segment lies within that half of the segment between the
-/// midpoints, so a shape around it grown by the half holds both places.
-pub(crate) fn midway((a0, b0): (Vec3, Vec3), (a1, b1): (Vec3, Vec3)) -> ((Vec3, Vec3), f32) {
-    let half = 0.5 * a0.distance(a1).max(b0.distance(b1));
-    ((a0.midpoint(a1), b0.midpoint(b1)), half)
-}
-
 /// Bounds of a shape; `None` for unbounded planes.
 pub(crate) fn bounds(shape: &Shape) -> Option<Aabb> {
     match *shape {

@@ -8,9 +8,9 @@ use super::camera::CameraRays;
 use super::casters::Casters;
 use super::color::Image;
 use super::frame::{Frame, RenderOptions};
-use super::geometry::{Aabb, bounds, midway};
+use super::geometry::{Aabb, bounds};
 use super::motion::RowMotion;
-use super::motion::{Cells, MotionGrid, Near, NearSet};
+use super::motion::{Cells, HITS, MET, MotionGrid, Near, NearSet, moving_bits};
 use super::prepared::Kept;
 use super::render::image;
 use super::retrace::{Moved, Piece, Spans, retrace_row};
@@ -214,9 +214,13 @@ pub struct Incremental {
 }
 
 /// The objects of `list` that moved from `before` (their shapes in the last
-/// frame) to `after`, where they were and where they are: their motion cells
-/// and shapes, and where `cam` sees them, their mirror images and their
-/// shadows (`Spans`).
+/// frame) to `after`: their bits among the moving objects (a pixel any of
+/// whose rays met one of them, where it was, is traced again: at once where
+/// no object that stayed shares the bit, else where one of its segments
+/// comes near such an object's old place), and where they
+/// are: their motion cells and shapes, and where `cam` sees them, their mirror
+/// images and their shadows (`Spans`), for the pixels whose rays they may
+/// meet now.
 fn moved(
     grid: &MotionGrid,
     cam: &CameraRays,
@@ -228,43 +232,47 @@ fn moved(
         hi: Vec3::NEG_INFINITY,
         ..Moved::default()
     };
-    let mut pairs = Vec::new();
+    let bits = moving_bits(&after.objects);
+    let mut nears = Vec::new();
     let mut pieces = Vec::new();
-    // The moved balls where they were and where they are: a segment well
-    // through one of each is left out (`NearSet::with_balls`), as a shadow ray
-    // blocked before and after.
-    let mut balls = [Vec::new(), Vec::new()];
-    for (was, is) in list
-        .iter()
-        .map(|&i| (&before[i], &after.objects[i].shape))
-        .filter(|(a, b)| a != b)
-    {
-        let both = [was, is].map(|s| (shape_cells(grid, s), Near::of(s)));
-        for (side, s) in [was, is].into_iter().enumerate() {
-            out.cells |= both[side].0;
-            if let super::scene::Shape::Sphere { centre, radius } = *s {
-                balls[side].push((centre, radius));
-            }
+    let mut moved = vec![false; bits.len()];
+    let mut was = Vec::new();
+    for &i in list {
+        let is = &after.objects[i].shape;
+        if before[i] == *is {
+            continue;
         }
-        if let Some(p) = piece_around(was, is) {
-            pieces.push(p);
-        } else {
-            near_pieces(was, &mut pieces);
-            near_pieces(is, &mut pieces);
+        moved[i] = true;
+        out.cells |= bits[i] | bits[i] << 32;
+        if let Some(n) = Near::of(&before[i]) {
+            was.push((bits[i], n));
         }
-        if let [(c0, Some(n0)), (c1, Some(n1))] = both {
-            for n in [n0, n1] {
-                (out.lo, out.hi) = (out.lo.min(n.lo()), out.hi.max(n.hi()));
-            }
-            pairs.push([(c0, n0), (c1, n1)]);
+        if let (Shape::Sphere { centre: c0, .. }, Shape::Sphere { centre, radius }) =
+            (before[i], *is)
+        {
+            out.balls.push((c0, centre, radius));
+        }
+        let cells = shape_cells(grid, is) & !HITS;
+        out.cells |= cells;
+        near_pieces(is, &mut pieces);
+        if let Some(n) = Near::of(is) {
+            (out.lo, out.hi) = (out.lo.min(n.lo()), out.hi.max(n.hi()));
+            nears.push((cells, n));
         } else {
             // A moving plane (none is): every segment may meet it.
             out.cells = Cells::MAX;
             out.coarse = true;
         }
     }
-    let [b0, b1] = balls;
-    out.near = NearSet::moved(pairs).with_balls(b0, b1);
+    out.near = NearSet::new(nears);
+    // The bits some object that did not move shares: a pixel with one of
+    // those is taken only where its segments met a moved object's old place.
+    let still = (bits.iter().zip(&moved))
+        .filter(|&(_, &m)| !m)
+        .fold(0, |a, (&b, _)| a | b);
+    out.sure = out.cells & MET & !still;
+    was.retain(|&(b, _)| b & still != 0);
+    out.was = was;
     out.spans = Spans::new(cam, after, (!out.coarse).then_some(&pieces[..]));
     out
 }
@@ -279,53 +287,6 @@ fn near_pieces(shape: &super::scene::Shape, out: &mut Vec<Piece>) {
         Shape::Sphere { centre, radius } => out.push(Piece::Ball(centre, radius + 2.0 * Near::PAD)),
         Shape::Plane { .. } => {}
     }
-}
-
-/// One piece that holds both of `near_pieces`' pieces of an object that
-/// barely moved, from `was` to `is` (half its move at most a sixteenth of its
-/// radius): a ball or a string or rod [`midway`] between its places, grown
-/// by half the (larger) move and a hundredth of a percent against the
-/// rounding of these sums (as the lane test's `Lanes::around`). In the
-/// realistic cradle, whose middle balls move by micrometres a frame, a third
-/// of the pieces go; an object that moves farther keeps its two, whose union
-/// is tighter.
-fn piece_around(was: &super::scene::Shape, is: &super::scene::Shape) -> Option<Piece> {
-    use super::scene::Shape;
-    const BARELY: f32 = 1.0 / 16.0;
-    let grown = |r: f32, half: f32| (r + 2.0 * Near::PAD + half) * 1.0001 + 1e-6;
-    let (ends, r0, r1, ball) = match (*was, *is) {
-        (
-            Shape::Sphere {
-                centre: c0,
-                radius: r0,
-            },
-            Shape::Sphere {
-                centre: c1,
-                radius: r1,
-            },
-        ) => (((c0, c0), (c1, c1)), r0, r1, true),
-        (
-            Shape::Cylinder {
-                a: a0,
-                b: b0,
-                radius: r0,
-            },
-            Shape::Cylinder {
-                a: a1,
-                b: b1,
-                radius: r1,
-            },
-        ) => (((a0, b0), (a1, b1)), r0, r1, false),
-        _ => return None,
-    };
-    let (((a, b), half), r) = (midway(ends.0, ends.1), r0.max(r1));
-    (half <= BARELY * r).then(|| {
-        if ball {
-            Piece::Ball(a, grown(r, half))
-        } else {
-            Piece::Rod(a, b, grown(r, half))
-        }
-    })
 }
 
 /// The cells `shape` overlaps: a cylinder's as the cells of 8 pieces along it,
@@ -533,11 +494,9 @@ impl Incremental {
 
 #[cfg(test)]
 mod tests {
-    use super::{piece_around, shape_cells};
+    use super::shape_cells;
     use crate::geometry::Aabb;
     use crate::motion::MotionGrid;
-    use crate::motion::Near;
-    use crate::retrace::Piece;
     use crate::scene::Shape;
     use glam::Vec3;
 
@@ -560,88 +519,14 @@ mod tests {
             let cell = grid.cells(p, p);
             assert_eq!(cell & !band, 0, "point {i} outside the band");
         }
-        // And the band is well under the bounding box's cells (here 29 of 32
-        // columns times 4 rows): at most half of them.
+        // And the band is well under the bounding box's cells (here 22 of 32
+        // columns times 2 rows, 44): at most two thirds of them.
         let boxed = grid.cells(a.min(b), a.max(b));
         assert!(
-            band.count_ones() * 2 <= boxed.count_ones(),
+            band.count_ones() * 3 <= boxed.count_ones() * 2,
             "{} of {}",
             band.count_ones(),
             boxed.count_ones()
         );
-    }
-
-    /// Distance in f64 from `p` to the segment from `a` to `b`.
-    fn to_axis(p: Vec3, a: Vec3, b: Vec3) -> f64 {
-        let (p, a, b) = (p.as_dvec3(), a.as_dvec3(), b.as_dvec3());
-        let e = b - a;
-        let t = if e.length_squared() > 0.0 {
-            ((p - a).dot(e) / e.length_squared()).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        p.distance(a + e * t)
-    }
-
-    #[test]
-    fn one_piece_around_an_object_that_barely_moved_holds_both_places() {
-        let g = f64::from(2.0 * Near::PAD);
-        // A ball moved by 1 mm (half of it is 1/40 of its radius): every point of
-        // either place, grown as its own piece would be, lies in the one piece.
-        let (c0, c1, r) = (
-            Vec3::new(0.01, 0.09, 0.0),
-            Vec3::new(0.011, 0.0899, 0.0),
-            0.02,
-        );
-        let ball = |c| Shape::Sphere {
-            centre: c,
-            radius: r,
-        };
-        let Some(Piece::Ball(m, big)) = piece_around(&ball(c0), &ball(c1)) else {
-            panic!("one ball expected");
-        };
-        // A string whose lower end moved by 20 micrometres (radius 0.6 mm).
-        let (top, b0, b1, sr) = (
-            Vec3::new(0.0, 0.25, 0.05),
-            Vec3::new(0.01, 0.09, 0.0),
-            Vec3::new(0.01002, 0.09, 0.0),
-            0.0006,
-        );
-        let string = |b| Shape::Cylinder {
-            a: top,
-            b,
-            radius: sr,
-        };
-        let Some(Piece::Rod(ma, mb, thick)) = piece_around(&string(b0), &string(b1)) else {
-            panic!("one rod expected");
-        };
-        // Points on each place's grown surface, in many directions.
-        for i in 0..2000 {
-            let u = i as f32 / 2000.0;
-            let (th, ph) = (u * 97.0, u * 13.0);
-            let d = Vec3::new(th.sin() * ph.cos(), th.cos(), th.sin() * ph.sin());
-            for c in [c0, c1] {
-                let p = c + d * (r + 2.0 * Near::PAD);
-                assert!(
-                    to_axis(p, m, m) <= f64::from(big),
-                    "ball point {i} outside: {} > {big}",
-                    to_axis(p, m, m)
-                );
-            }
-            for b in [b0, b1] {
-                let p = top.lerp(b, u) + d * (sr + 2.0 * Near::PAD);
-                assert!(
-                    to_axis(p, ma, mb) <= f64::from(thick),
-                    "string point {i} outside"
-                );
-            }
-        }
-        // The one piece is hardly larger than one place's.
-        assert!(f64::from(big) < (f64::from(r) + g) * 1.03);
-        // An object that moved farther keeps its two pieces.
-        let far = c0 + Vec3::new(0.003, 0.0, 0.0);
-        assert!(piece_around(&ball(c0), &ball(far)).is_none());
-        assert!(piece_around(&string(b0), &string(b0 + Vec3::X * 1e-4)).is_none());
-        assert!(piece_around(&ball(c0), &string(b0)).is_none());
     }
 }

@@ -1,11 +1,16 @@
 //! Motion tracking for incremental frames: the box every moving object stays in,
-//! cut into 32 x 4 x 1 cells, and per pixel the set of cells its rays passed
-//! through (one bit each in a `u128`) and the segments of its rays inside the
-//! box. The scalar path notes both as it traces ([`Record`]; free segments leave
-//! no cells: the filter finds those pixels on the screen); `incremental`
-//! re-traces the pixels whose cells meet those of moved objects, or that lie
-//! where a moved object shows, and one of whose segments comes near a moved
-//! object, where it was or where it is ([`Near`]).
+//! cut into 32 x 2 x 1 cells, and per pixel the set of cells its rays passed
+//! through (one bit each in the low 64 bits of a `u128`), the moving objects
+//! its rays met ([`HITS`], the high 64), and the segments of its rays inside
+//! the box. The scalar path notes them as it traces ([`Record`]; free segments
+//! leave no cells: the filter finds those pixels on the screen); `incremental`
+//! re-traces the pixels whose rays met a moved object where it was, and those
+//! whose cells meet those of moved objects, or that lie where a moved object
+//! shows, and one of whose segments comes near a moved object where it is now
+//! ([`Near`]). A blocked shadow ray changes only when its blocker leaves: its
+//! segment is kept, flagged, where the first blocker found moves (read only
+//! when a ball of its bit moved, or where a bit is shared), and dropped where
+//! it is still.
 
 use super::geometry::{Aabb, Ray};
 use glam::Vec3;
@@ -16,6 +21,7 @@ mod row;
 pub(crate) use batch::Batch;
 pub use batch::NearSet;
 pub use near::Near;
+pub(crate) use near::point_segment;
 pub(crate) use row::{BLOCK, RowMotion, SUPER};
 
 /// A set of cells of the motion grid, one bit each.
@@ -36,9 +42,10 @@ pub struct MotionGrid {
 }
 
 impl MotionGrid {
-    /// Cells along x, y and z (32 * 4 * 1 = 128, the bits of a mask). `cells`
-    /// counts on rows of 32 x cells and one z layer.
-    const N: [usize; 3] = [32, 4, 1];
+    /// Cells along x, y and z (32 * 2 * 1 = 64, the low bits of a mask; the
+    /// high 64 are [`HITS`]). `cells` counts on rows of 32 x cells and one z
+    /// layer.
+    const N: [usize; 3] = [32, 2, 1];
 
     /// The grid over `bounds`.
     #[must_use]
@@ -77,8 +84,8 @@ impl MotionGrid {
         let [x0, y0, _] = c0.as_ivec3().to_array().map(i32::cast_unsigned);
         let [x1, y1, _] = c1.as_ivec3().to_array().map(i32::cast_unsigned);
         let run = Cells::from((u32::MAX >> (31 - x1)) & (u32::MAX << x0));
-        let every_row = run | run << 32 | run << 64 | run << 96;
-        every_row & ROWS[(y0 * 4 + y1) as usize]
+        let every_row = run | run << 32;
+        every_row & ROWS[(y0 * 2 + y1) as usize]
     }
 
     /// The cells the segment of `ray` from its start to `t_max` passes through
@@ -112,23 +119,89 @@ impl MotionGrid {
         if near > far || far.is_nan() {
             return None;
         }
+        let mut a = ray.at(near);
+        a.x = f32::from_bits(a.x.to_bits() & !1);
         Some(Seg {
-            a: ray.at(near),
+            a,
             b: ray.at(far.min(f32::MAX)),
         })
     }
 }
 
 // `cells` counts on rows of 32 x cells and one z layer.
-const _: () = assert!(MotionGrid::N[0] == 32 && MotionGrid::N[1] == 4 && MotionGrid::N[2] == 1);
+const _: () = assert!(MotionGrid::N[0] == 32 && MotionGrid::N[1] == 2 && MotionGrid::N[2] == 1);
 
-/// The bits of rows `y0..=y1` of x cells at `ROWS[y0 * 4 + y1]` (none where
+/// The high 64 bits of a pixel's [`Cells`]: the moving objects its rays met
+/// (a camera or mirror ray's nearest hit, a shadow ray's blockers), each as
+/// [`moving_bits`] gives it.
+pub const HITS: Cells = (u64::MAX as Cells) << 64;
+
+/// The bits of [`HITS`] for the moving objects a camera or mirror ray met, or
+/// a string that blocked a shadow ray (its segment is kept, flagged).
+pub const MET: Cells = (u32::MAX as Cells) << 64;
+
+/// The bits of [`HITS`] for the moving balls that blocked a shadow ray: its
+/// segment is kept, flagged ([`Seg::flagged`]).
+pub const SHADOW: Cells = (u32::MAX as Cells) << 96;
+
+/// Per object of `objects`, its bit in [`MET`]: the moving objects in order,
+/// each its own bit while there are at most 32 of them. Beyond, each is placed
+/// in a row of pendulums: the k-th of n balls at k, the k-th of m other
+/// moving objects (the strings) at `k * n / m`, so a pendulum's ball and
+/// strings share a bit, and [`row_bit`] gives the bit of a place in the row.
+/// 0 for an object that never moves.
+#[must_use]
+pub fn moving_bits(objects: &[crate::scene::Object]) -> Vec<Cells> {
+    let ball = |o: &crate::scene::Object| matches!(o.shape, crate::scene::Shape::Sphere { .. });
+    let n = objects.iter().filter(|o| o.moving).count();
+    let balls = objects.iter().filter(|o| o.moving && ball(o)).count();
+    let others = n - balls;
+    let (mut rank, mut seen) = (0, [0, 0]);
+    objects
+        .iter()
+        .map(|o| {
+            if !o.moving {
+                return 0;
+            }
+            let k = if n <= 32 {
+                rank
+            } else if ball(o) {
+                row_bit(seen[0], balls)
+            } else if balls > 0 {
+                row_bit(seen[1] * balls / others, balls)
+            } else {
+                row_bit(seen[1], others)
+            };
+            rank += 1;
+            seen[usize::from(!ball(o))] += 1;
+            1 << (64 + k)
+        })
+        .collect()
+}
+
+/// The bit of place `p` in a row of `n` (`p < n`): its own up to 32 places;
+/// beyond, 16 bits for each half of the row, one place each at its end and
+/// groups that grow towards the middle (the g-th starting `max(g, h g^3 /
+/// 4096)` places from the end, `h` the half's length). The pendulums that swing
+/// in a long row are those at its ends, so a group holds few that stay still
+/// while its others move.
+fn row_bit(p: usize, n: usize) -> usize {
+    if n <= 32 {
+        return p;
+    }
+    let half = n.div_ceil(2);
+    let (d, side) = if p < half { (p, 0) } else { (n - 1 - p, 16) };
+    let start = |g: usize| g.max(half * g * g * g / 4096);
+    side + (0..16).rev().find(|&g| start(g) <= d).unwrap_or(0)
+}
+
+/// The bits of rows `y0..=y1` of x cells at `ROWS[y0 * 2 + y1]` (none where
 /// `y0 > y1`).
-const ROWS: [Cells; 16] = {
-    let mut rows = [0; 16];
+const ROWS: [Cells; 4] = {
+    let mut rows = [0; 4];
     let mut i = 0;
-    while i < 16 {
-        let (y0, y1) = (i / 4, i % 4);
+    while i < 4 {
+        let (y0, y1) = (i / 2, i % 2);
         let mut y = y0;
         while y <= y1 {
             rows[i] |= (u32::MAX as Cells) << (32 * y);
@@ -148,6 +221,21 @@ pub struct Seg {
     pub b: Vec3,
 }
 
+impl Seg {
+    /// Whether it is a blocked shadow ray's (the last bit of `a.x`).
+    #[must_use]
+    #[inline]
+    pub fn flagged(&self) -> bool {
+        self.a.x.to_bits() & 1 == 1
+    }
+
+    /// Flags it ([`Self::flagged`]).
+    #[inline]
+    pub fn flag(&mut self) {
+        self.a.x = f32::from_bits(self.a.x.to_bits() | 1);
+    }
+}
+
 /// Where the scalar path notes each ray's segment for incremental frames: it
 /// is generic over this, so an untracked frame notes nothing at no cost
 /// ([`NoRecord`]).
@@ -157,6 +245,17 @@ pub(crate) trait Record {
     /// cells: whether it comes near a moved shape shows on the screen
     /// (`screen::Spans`).
     fn segment(&mut self, ray: &Ray, t_max: f32, free: bool);
+    /// Notes the moving objects a ray met ([`HITS`] bits).
+    fn hit(&mut self, bits: Cells);
+    /// The shadow ray whose segment it noted last was blocked, first by a
+    /// moving ball (`ball`, its [`MET`] bit: the ball's [`SHADOW`] bit is
+    /// noted), or else by another moving object (`other`, its bit, noted):
+    /// the segment stays, flagged. Blocked first by a still object (0, 0),
+    /// it stays blocked whatever moves: the segment goes.
+    fn blocked(&mut self, by: (Cells, Cells));
+    /// Whether it notes anything (an untracked frame's does not: the
+    /// blockers of its shadow rays need not be found).
+    fn tracks(&self) -> bool;
 }
 
 /// Notes nothing: the recorder of frames that track no motion.
@@ -166,6 +265,14 @@ pub(crate) struct NoRecord;
 impl Record for NoRecord {
     #[inline]
     fn segment(&mut self, _: &Ray, _: f32, _: bool) {}
+    #[inline]
+    fn hit(&mut self, _: Cells) {}
+    #[inline]
+    fn blocked(&mut self, _: (Cells, Cells)) {}
+    #[inline]
+    fn tracks(&self) -> bool {
+        false
+    }
 }
 
 /// Which cells of the motion grid the rays of one pixel passed through, and their
@@ -181,6 +288,8 @@ pub struct Motion {
     pub mask: Cells,
     /// Segments inside the box so far, appended (a row's buffer, lent).
     pub segs: Vec<Seg>,
+    /// Where the last segment noted went in `segs`, if it was kept.
+    last: Option<usize>,
 }
 
 impl Motion {
@@ -197,6 +306,7 @@ impl Motion {
             grid,
             mask: 0,
             segs,
+            last: None,
         }
     }
 }
@@ -207,39 +317,166 @@ impl Record for Motion {
         let Some(g) = &self.grid else {
             return;
         };
+        self.last = None;
         if let Some(s) = g.clip(ray, t_max) {
             if !free {
                 self.mask |= g.cells(s.a.min(s.b), s.a.max(s.b));
             }
+            self.last = Some(self.segs.len());
             self.segs.push(s);
         }
+    }
+
+    #[inline]
+    fn hit(&mut self, bits: Cells) {
+        if self.grid.is_some() {
+            self.mask |= bits;
+        }
+    }
+
+    fn blocked(&mut self, (ball, other): (Cells, Cells)) {
+        let Some(at) = self.last.take() else {
+            return;
+        };
+        if ball | other == 0 {
+            self.segs.truncate(at);
+        } else {
+            self.segs[at].flag();
+            self.mask |= ball << 32 | other;
+        }
+    }
+
+    #[inline]
+    fn tracks(&self) -> bool {
+        self.grid.is_some()
     }
 }
 
 #[cfg(test)]
 mod tests {
-    use super::MotionGrid;
-    use crate::geometry::Aabb;
+    use super::{MET, Motion, MotionGrid, Record, SHADOW};
+    use crate::geometry::{Aabb, Ray};
     use glam::Vec3;
+
+    /// A motion box of 0.8 x 0.4 x 0.2 m around the origin's cradle.
+    fn grid() -> MotionGrid {
+        MotionGrid::new(Aabb {
+            min: Vec3::new(-0.4, 0.0, -0.1),
+            max: Vec3::new(0.4, 0.4, 0.1),
+        })
+    }
+
+    /// A shadow ray's segment, noted, then reported blocked by `by`:
+    /// what the record keeps.
+    fn blocked(by: (u128, u128)) -> Motion {
+        let mut m = Motion::new(Some(grid()));
+        let ray = Ray {
+            origin: Vec3::new(0.0, 0.05, 0.0),
+            dir: Vec3::Y,
+        };
+        m.segment(&ray, 1.0, false);
+        assert_eq!(m.segs.len(), 1, "the segment inside the box is noted");
+        m.blocked(by);
+        m
+    }
+
+    #[test]
+    fn a_blocked_shadow_ray_keeps_its_segment_only_for_a_moving_blocker() {
+        let bit = 1u128 << 64;
+        // Blocked first by a moving ball: kept, flagged, with the ball's
+        // shadow bit (the same rank, 32 bits up) and not its hit bit.
+        let m = blocked((bit, 0));
+        assert_eq!(m.segs.len(), 1);
+        assert!(m.segs[0].flagged());
+        assert_eq!(m.mask & SHADOW, bit << 32);
+        assert_eq!(m.mask & MET, 0);
+        // By another moving object (a string): kept, flagged, with the
+        // object's hit bit.
+        let m = blocked((0, bit));
+        assert_eq!(m.segs.len(), 1);
+        assert!(m.segs[0].flagged());
+        assert_eq!(m.mask & MET, bit);
+        assert_eq!(m.mask & SHADOW, 0);
+        // By a still object: the ray stays blocked whatever moves, so
+        // nothing of it is kept but the cells it passed.
+        let m = blocked((0, 0));
+        assert!(m.segs.is_empty());
+        assert_eq!(m.mask & (MET | SHADOW), 0);
+        assert_ne!(m.mask, 0, "its cells are kept");
+    }
+
+    #[test]
+    fn a_long_row_gives_its_ends_their_own_bits_and_groups_its_middle() {
+        use super::row_bit;
+        // Up to 32 places: one bit each.
+        assert_eq!(
+            (0..32).map(|p| row_bit(p, 32)).collect::<Vec<_>>(),
+            (0..32).collect::<Vec<_>>()
+        );
+        for n in [33, 50, 200, 1000] {
+            let bits: Vec<usize> = (0..n).map(|p| row_bit(p, n)).collect();
+            // 32 bits, each held by a run of neighbours.
+            assert!(bits.iter().all(|&b| b < 32), "{n}");
+            for b in 0..32 {
+                let at: Vec<usize> = (0..n).filter(|&p| bits[p] == b).collect();
+                assert!(!at.is_empty(), "{n}: bit {b} unused");
+                assert_eq!(at[at.len() - 1] - at[0] + 1, at.len(), "{n}: bit {b}");
+            }
+            assert_eq!(bits[0], 0);
+            assert_eq!(bits[n - 1], 16);
+            // The first three places at each end stand alone.
+            for p in 0..3 {
+                assert_eq!(
+                    bits.iter().filter(|&&b| b == bits[p]).count(),
+                    1,
+                    "{n}: place {p}"
+                );
+                assert_eq!(
+                    bits.iter().filter(|&&b| b == bits[n - 1 - p]).count(),
+                    1,
+                    "{n}: place {}",
+                    n - 1 - p
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn a_report_acts_on_the_last_ray_only() {
+        let mut m = Motion::new(Some(grid()));
+        let inside = Ray {
+            origin: Vec3::new(0.0, 0.05, 0.0),
+            dir: Vec3::X,
+        };
+        m.segment(&inside, 0.2, false);
+        // A shadow ray that never enters the box, then blocked: the segment
+        // of the ray before it is not its own, and stays as it was.
+        let outside = Ray {
+            origin: Vec3::new(0.0, 2.0, 0.0),
+            dir: Vec3::Y,
+        };
+        m.segment(&outside, 1.0, false);
+        m.blocked((1 << 64, 0));
+        assert_eq!(m.segs.len(), 1);
+        assert!(!m.segs[0].flagged());
+        assert_eq!(m.mask & (MET | SHADOW), 0);
+    }
 
     #[test]
     fn a_box_claims_the_cells_of_its_x_run_in_each_of_its_rows() {
-        let grid = MotionGrid::new(Aabb {
-            min: Vec3::new(-0.4, 0.0, -0.1),
-            max: Vec3::new(0.4, 0.4, 0.1),
-        });
-        // Cells are 0.025 wide (x) and 0.1 high (y); boxes well inside cells'
-        // interiors (centres on a 0.0125 / 0.05 offset) so padding never
+        let grid = grid();
+        // Cells are 0.025 wide (x) and 0.2 high (y); boxes well inside cells'
+        // interiors (centres on a 0.0125 / 0.1 offset) so padding never
         // reaches a neighbour.
         for (x0, x1, y0, y1) in [
             (0, 0, 0, 0),
-            (3, 9, 1, 2),
-            (0, 31, 0, 3),
-            (31, 31, 3, 3),
-            (5, 6, 2, 3),
+            (3, 9, 0, 1),
+            (0, 31, 0, 1),
+            (31, 31, 1, 1),
+            (5, 6, 1, 1),
         ] {
             let at = |x: usize, y: usize| {
-                Vec3::new(-0.4 + 0.025 * x as f32 + 0.0125, 0.1 * y as f32 + 0.05, 0.0)
+                Vec3::new(-0.4 + 0.025 * x as f32 + 0.0125, 0.2 * y as f32 + 0.1, 0.0)
             };
             let got = grid.cells(at(x0, y0), at(x1, y1));
             let mut want = 0u128;
@@ -252,6 +489,9 @@ mod tests {
         }
         // Outside the box: no cells; larger than the box: all of them.
         assert_eq!(grid.cells(Vec3::splat(2.0), Vec3::splat(3.0)), 0);
-        assert_eq!(grid.cells(Vec3::splat(-5.0), Vec3::splat(5.0)), u128::MAX);
+        assert_eq!(
+            grid.cells(Vec3::splat(-5.0), Vec3::splat(5.0)),
+            u128::from(u64::MAX)
+        );
     }
 }

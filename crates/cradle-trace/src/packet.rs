@@ -144,24 +144,34 @@ impl<'a, 'p> Packet<'a, 'p> {
             first.d.set(i, ray.dir);
             live |= 1 << i;
         }
-        let b = self.bounces();
-        let c = match Build::detect() {
-            Build::Portable => bounce_copy(Portable, b, &first, live, None),
+        let c = match (Build::detect(), self.notes.tracked()) {
+            (Build::Portable, false) => {
+                bounce_copy(Portable, self.bounces::<false>(), &first, live, None)
+            }
+            (Build::Portable, true) => {
+                bounce_copy(Portable, self.bounces::<true>(), &first, live, None)
+            }
             #[cfg(target_arch = "x86_64")]
-            Build::Avx2(s) => bounce_copy(s, b, &first, live, None),
+            (Build::Avx2(s), false) => bounce_copy(s, self.bounces::<false>(), &first, live, None),
+            #[cfg(target_arch = "x86_64")]
+            (Build::Avx2(s), true) => bounce_copy(s, self.bounces::<true>(), &first, live, None),
         };
         std::array::from_fn(|i| Vec3::new(c.x[i], c.y[i], c.z[i]))
     }
 
-    /// The scene's queries over the lanes.
+    /// The scene's queries over the lanes, noting what a tracked frame (`T`)
+    /// needs.
     #[inline(always)]
-    fn scan(&self) -> Scan<'_, 'p> {
-        Scan { p: self.p }
+    fn scan<const T: bool>(&self) -> Scan<'_, 'p, T> {
+        Scan {
+            p: self.p,
+            first: self.notes.first_blockers(),
+        }
     }
 
     /// The lights of what the lanes meet.
     #[inline(always)]
-    fn lights(&self) -> Lights<'_, 'p> {
+    fn lights<const T: bool>(&self) -> Lights<'_, 'p, T> {
         Lights {
             scan: self.scan(),
             notes: &self.notes,
@@ -170,7 +180,7 @@ impl<'a, 'p> Packet<'a, 'p> {
 
     /// The bounces of the lanes' rays.
     #[inline(always)]
-    fn bounces(&self) -> Bounces<'_, 'p> {
+    fn bounces<const T: bool>(&self) -> Bounces<'_, 'p, T> {
         Bounces {
             lights: self.lights(),
             bound: self.bound,
@@ -203,7 +213,7 @@ impl<'a, 'p> Packet<'a, 'p> {
     /// The packet's lanes in lane build `S`: the lanes written (a bit each) and
     /// their linear colours, also kept in `colors`.
     #[inline(always)]
-    fn floor_lanes<S: Simd>(
+    fn floor_lanes<S: Simd, const T: bool>(
         &self,
         s: S,
         floor: &Floor<'_>,
@@ -246,12 +256,12 @@ impl<'a, 'p> Packet<'a, 'p> {
             };
             (0, none)
         } else {
-            self.scan().nearest_of(s, others, (c.origin, &d), t)
+            self.scan::<T>().nearest_of(s, others, (c.origin, &d), t)
         };
         let on_floor = !front;
         // Camera rays: free (`Record::segment`'s `free`).
         self.notes
-            .note(s, (on_floor, 0xFF), (&splat3(s, c.origin), &d), t);
+            .note::<T, S>(s, (on_floor, 0xFF), (&splat3(s, c.origin), &d), t);
         // closest_among: the normal faces the ray (`denom` is normal.dot(dir)).
         let back = S::lt(k(0.0), denom);
         let nn = L3 {
@@ -271,7 +281,7 @@ impl<'a, 'p> Packet<'a, 'p> {
         let mut color = if on_floor == 0 {
             splat3(s, Vec3::ZERO)
         } else {
-            self.shade_lanes(s, floor, (x0, y), on_floor, &hit)
+            self.shade_lanes::<S, T>(s, floor, (x0, y), on_floor, &hit)
         };
         if front != 0 {
             let ray = Bounce {
@@ -282,7 +292,7 @@ impl<'a, 'p> Packet<'a, 'p> {
                 free: 0,
                 from: k(-1.0),
             };
-            let cradle = self.bounces().trace(s, &ray, front, Some(found));
+            let cradle = self.bounces::<T>().trace(s, &ray, front, Some(found));
             color = select3::<S>(s.mask(front), &cradle, &color);
         }
         let color = store3::<S>(&color);
@@ -293,7 +303,7 @@ impl<'a, 'p> Packet<'a, 'p> {
     /// `shade` at depth 0 of the floor lanes `on` (a bit each) at `hit`: what
     /// [`Lights::local`] gives, blended with what the mirror rays bring.
     #[inline(always)]
-    fn shade_lanes<S: Simd>(
+    fn shade_lanes<S: Simd, const T: bool>(
         &self,
         s: S,
         floor: &Floor<'_>,
@@ -302,11 +312,13 @@ impl<'a, 'p> Packet<'a, 'p> {
         hit: &Surface<S::F>,
     ) -> L3<S::F> {
         // Camera rays met the floor: their shadow rays are free.
-        let mut color = self.lights().local(s, Met::Floor(floor), (on, 0xFF), hit);
+        let mut color = self
+            .lights::<T>()
+            .local(s, Met::Floor(floor), (on, 0xFF), hit);
         let r = floor.material.reflective;
         // weight * r * bound, at weight 1.
         if r > 0.0 && 0 < self.p.scene.max_depth && r * self.bound >= BAILOUT {
-            let refl = self.mirrors(s, floor, (x0, y, on), hit, r);
+            let refl = self.mirrors::<S, T>(s, floor, (x0, y, on), hit, r);
             // color = color * (1.0 - r) + reflected * r
             let k = |v: f32| s.splat(v);
             color = color.scale(k(1.0 - r)).add(&refl.scale(k(r)));
@@ -320,7 +332,7 @@ impl<'a, 'p> Packet<'a, 'p> {
     /// ([`Bounces::trace`]). A packet whose lanes all meet nothing takes the
     /// background at once.
     #[inline(always)]
-    fn mirrors<S: Simd>(
+    fn mirrors<S: Simd, const T: bool>(
         &self,
         s: S,
         floor: &Floor<'_>,
@@ -337,12 +349,12 @@ impl<'a, 'p> Packet<'a, 'p> {
         let mut found = None;
         if let Some(list) = self.tiles.mirror_at(floor.object, x0, y) {
             let f = self
-                .scan()
+                .scan::<T>()
                 .nearest_in(s, (list, floor.object), (start, &dir), on_floor);
             missed = f.missed;
             found = Some(f);
         }
-        if on_floor & !missed == 0 && !self.notes.tracked() {
+        if on_floor & !missed == 0 && !T {
             // Every lane sees the background, and there is nothing to note.
             return splat3(s, self.p.scene.background);
         }
@@ -357,7 +369,7 @@ impl<'a, 'p> Packet<'a, 'p> {
             free: 0xFF,
             from: s.splat(floor.object as f32),
         };
-        self.bounces().trace(s, &mirror, on_floor, found)
+        self.bounces::<T>().trace(s, &mirror, on_floor, found)
     }
 }
 
@@ -395,9 +407,12 @@ impl Kernel for FloorKernel<'_, '_, '_> {
     type Output = u8;
     #[inline(always)]
     fn run<S: Simd>(self, s: S) -> u8 {
-        let (done, c) = self
-            .pk
-            .floor_lanes(s, self.floor, self.others, self.at.0, self.at.1);
+        let (pk, (x0, y)) = (self.pk, self.at);
+        let (done, c) = if pk.notes.tracked() {
+            pk.floor_lanes::<S, true>(s, self.floor, self.others, x0, y)
+        } else {
+            pk.floor_lanes::<S, false>(s, self.floor, self.others, x0, y)
+        };
         if done != 0 {
             write(self.out, done, s.rgba8(&c.x, &c.y, &c.z));
         }

@@ -10,6 +10,7 @@ use super::bvh::{Bvh, runs};
 use super::casters::{Casters, clear_of, piece_boxes};
 use super::geometry::{Aabb, Geom, Hit, Ray, bounds, hit_plane, hit_sphere};
 use super::material::Phong;
+use super::motion::{Cells, moving_bits};
 use super::scene::{Scene, Shape};
 use super::shadow::Footprints;
 use super::wide::{W, WIDE_AT_MOST, WideBoxes};
@@ -42,6 +43,8 @@ pub struct Prepared<'a> {
     pub(crate) bounded: Vec<(usize, Aabb)>,
     pub(crate) group: Aabb,
     pub(crate) planes: Vec<usize>,
+    /// Per object, its bit among the moving objects ([`moving_bits`]).
+    moving_bits: Vec<Cells>,
 }
 
 /// The shadow casters of the frame before, for the next one
@@ -104,7 +107,14 @@ impl<'a> Prepared<'a> {
             bounded,
             group,
             planes,
+            moving_bits: moving_bits(&scene.objects),
         }
+    }
+
+    /// Object `i`'s bit among the moving objects (0 if it never moves).
+    #[must_use]
+    pub(crate) fn moving_bit(&self, i: usize) -> Cells {
+        self.moving_bits[i]
     }
 
     /// Object `i`'s shape with what its hit test needs.
@@ -410,7 +420,7 @@ impl<'a> Prepared<'a> {
     /// Whether anything lies on the ray before `t_max` (shadow rays: any hit ends them).
     #[must_use]
     pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
-        self.occluded_by(usize::MAX, ray, t_max, None)
+        self.blocker_by(usize::MAX, ray, t_max, None).is_some()
     }
 
     /// [`Self::occluded`] for a shadow ray towards light `light` from a point of
@@ -420,27 +430,12 @@ impl<'a> Prepared<'a> {
     #[must_use]
     pub fn occluded_towards(
         &self,
-        (from, outside): (usize, bool),
+        from: (usize, bool),
         light: usize,
         ray: &Ray,
         t_max: f32,
     ) -> bool {
-        if let Some(list) = self.casters.as_ref().and_then(|c| {
-            let clear = outside && clear_of(self.geom(from), ray.origin);
-            c.get(from)?.as_ref()?.at(light, ray.origin, clear)
-        }) {
-            if self.occluded_by_planes(from, ray, t_max) {
-                return true;
-            }
-            let inv = ray.dir.recip();
-            return list.scan(
-                ray,
-                inv,
-                || t_max,
-                |i, _, _| self.hit_object(i, ray).is_some_and(|(t, _)| t < t_max),
-            );
-        }
-        self.occluded_by(from, ray, t_max, self.footprints(from, light))
+        self.blocker_towards(from, light, ray, t_max).is_some()
     }
 
     /// [`Self::occluded`] for a shadow ray from a point of object `from` that
@@ -448,10 +443,54 @@ impl<'a> Prepared<'a> {
     /// plane's own shadow rays do not test it ([`Self::closest_from`]).
     #[must_use]
     pub fn occluded_by_planes(&self, from: usize, ray: &Ray, t_max: f32) -> bool {
+        self.blocking_plane(from, ray, t_max).is_some()
+    }
+
+    /// The object found blocking the shadow ray of [`Self::occluded_towards`]
+    /// (the first of its tests to), if any: through the casters' list of
+    /// `from` for `light` where there is one, else as [`Self::blocker_by`]
+    /// finds it.
+    #[must_use]
+    pub(crate) fn blocker_towards(
+        &self,
+        (from, outside): (usize, bool),
+        light: usize,
+        ray: &Ray,
+        t_max: f32,
+    ) -> Option<usize> {
+        if let Some(list) = self.casters.as_ref().and_then(|c| {
+            let clear = outside && clear_of(self.geom(from), ray.origin);
+            c.get(from)?.as_ref()?.at(light, ray.origin, clear)
+        }) {
+            if let Some(k) = self.blocking_plane(from, ray, t_max) {
+                return Some(k);
+            }
+            let inv = ray.dir.recip();
+            let mut found = None;
+            list.scan(
+                ray,
+                inv,
+                || t_max,
+                |i, _, _| {
+                    let b = self.hit_object(i, ray).is_some_and(|(t, _)| t < t_max);
+                    if b {
+                        found = Some(i);
+                    }
+                    b
+                },
+            );
+            return found;
+        }
+        self.blocker_by(from, ray, t_max, self.footprints(from, light))
+    }
+
+    /// The first plane [`Self::occluded_by_planes`] finds blocking the ray.
+    fn blocking_plane(&self, from: usize, ray: &Ray, t_max: f32) -> Option<usize> {
         let own = self.own_plane(Some(from));
         self.planes
             .iter()
-            .any(|&i| i != own && self.hit_object(i, ray).is_some_and(|(t, _)| t < t_max))
+            .copied()
+            .find(|&i| i != own && self.hit_object(i, ray).is_some_and(|(t, _)| t < t_max))
     }
 
     /// `from` where it is a plane, else `usize::MAX`: the plane a ray leaving
@@ -462,48 +501,70 @@ impl<'a> Prepared<'a> {
             .unwrap_or(usize::MAX)
     }
 
-    /// Any hit before `t_max` on a plane (but `from`'s own), or, inside the box
-    /// around them all, on a bounded object (each tested through its own box):
-    /// all of them, or those `footprints` leaves for the ray's start.
-    fn occluded_by(
+    /// The first object found blocking the ray before `t_max` (any hit ends
+    /// the search): the planes but `from`'s own, then, if the ray
+    /// meets the box around them all, the bounded objects (each tested
+    /// through its own box): all of them, or those `footprints` leaves for
+    /// the ray's start.
+    fn blocker_by(
         &self,
         from: usize,
         ray: &Ray,
         t_max: f32,
         footprints: Option<&Footprints>,
-    ) -> bool {
-        if self.occluded_by_planes(from, ray, t_max) {
-            return true;
+    ) -> Option<usize> {
+        if let Some(k) = self.blocking_plane(from, ray, t_max) {
+            return Some(k);
         }
         let blocks = |i: usize| self.hit_object(i, ray).is_some_and(|(t, _)| t < t_max);
         let inv = ray.dir.recip();
         if !self.group.hit(ray, inv, t_max) {
-            return false;
+            return None;
         }
         let test = |i: usize| self.boxes[i].hit(ray, inv, t_max) && blocks(i);
         match (
             footprints.and_then(|fp| fp.candidates(ray.origin)),
             &self.bvh,
         ) {
-            (Some((cell, always)), _) => cell.iter().chain(always).any(|&i| test(i)),
+            (Some((cell, always)), _) => cell.iter().chain(always).copied().find(|&i| test(i)),
             (None, Some(_)) if self.bounded.len() <= WIDE_AT_MOST => {
-                self.wide
-                    .list()
-                    .scan(ray, inv, || t_max, |i, _, _| blocks(i))
+                let mut found = None;
+                self.wide.list().scan(
+                    ray,
+                    inv,
+                    || t_max,
+                    |i, _, _| {
+                        let b = blocks(i);
+                        if b {
+                            found = Some(i);
+                        }
+                        b
+                    },
+                );
+                found
             }
-            (None, Some(bvh)) => bvh.traverse(
-                ray,
-                inv,
-                || t_max,
-                |k| {
-                    let (i, b) = self.bounded[k];
-                    b.hit(ray, inv, t_max) && blocks(i)
-                },
-            ),
+            (None, Some(bvh)) => {
+                let mut found = None;
+                bvh.traverse(
+                    ray,
+                    inv,
+                    || t_max,
+                    |k| {
+                        let (i, b) = self.bounded[k];
+                        let hit = b.hit(ray, inv, t_max) && blocks(i);
+                        if hit {
+                            found = Some(i);
+                        }
+                        hit
+                    },
+                );
+                found
+            }
             (None, None) => self
                 .bounded
                 .iter()
-                .any(|&(i, ref b)| b.hit(ray, inv, t_max) && blocks(i)),
+                .find(|&&(i, ref b)| b.hit(ray, inv, t_max) && blocks(i))
+                .map(|&(i, _)| i),
         }
     }
 }

@@ -18,8 +18,9 @@ use glam::Vec3;
 
 /// How the rays that shading spawns find what they meet.
 pub(crate) trait Paths {
-    /// `ray`, traced at bounce `depth`, ends at `t_max` (its hit, or infinity).
-    fn traced(&mut self, p: &Prepared<'_>, ray: &Ray, t_max: f32, depth: u32);
+    /// `ray`, traced at bounce `depth`, ends at `t_max` on object `met` (its
+    /// hit), or meets nothing (`None`, infinity).
+    fn traced(&mut self, p: &Prepared<'_>, ray: &Ray, end: (f32, Option<usize>), depth: u32);
     /// Whether the shadow ray `shadow` from the point of a hit (met at a
     /// bounce) towards a light, `from = (hit, light, depth)`, is blocked
     /// before `dist`.
@@ -41,7 +42,7 @@ pub(crate) struct Plain;
 
 impl Paths for Plain {
     #[inline]
-    fn traced(&mut self, _: &Prepared<'_>, _: &Ray, _: f32, _: u32) {}
+    fn traced(&mut self, _: &Prepared<'_>, _: &Ray, _: (f32, Option<usize>), _: u32) {}
 
     #[inline]
     fn blocked(
@@ -79,7 +80,8 @@ pub(crate) fn shade(
     bound: f32,
     paths: &mut impl Paths,
 ) -> Vec3 {
-    paths.traced(p, ray, hit.map_or(f32::INFINITY, |h| h.t), depth);
+    let end = hit.map_or((f32::INFINITY, None), |h| (h.t, Some(h.object)));
+    paths.traced(p, ray, end, depth);
     let Some(hit) = hit else {
         return p.scene.background;
     };

@@ -1,7 +1,8 @@
-//! The motion record of a row (each pixel's cells and ray segments in the motion
-//! box) and the re-trace of the pixels an incremental frame must change: those
-//! whose cells meet the moved objects' and one of whose segments comes near a
-//! moved object, where it was or where it is.
+//! The motion record of a row (each pixel's cells, the moving objects its rays
+//! met, and its ray segments in the motion box) and the re-trace of the pixels
+//! an incremental frame must change: those whose rays met a moved object
+//! where it was, and those one of whose segments comes near a moved object
+//! where it is now.
 
 use super::color::srgb8;
 use super::frame::Frame;

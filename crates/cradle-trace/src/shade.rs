@@ -40,9 +40,20 @@ impl<R: Record> Tiled<'_, R> {
 
 impl<R: Record> Paths for Tiled<'_, R> {
     #[inline]
-    fn traced(&mut self, _: &Prepared<'_>, ray: &Ray, t_max: f32, depth: u32) {
+    fn traced(
+        &mut self,
+        p: &Prepared<'_>,
+        ray: &Ray,
+        (t_max, met): (f32, Option<usize>),
+        depth: u32,
+    ) {
         let free = std::mem::take(&mut self.next_free) || depth == 0;
-        self.record.segment(ray, t_max, free);
+        if self.record.tracks() {
+            self.record.segment(ray, t_max, free);
+            if let Some(o) = met {
+                self.record.hit(p.moving_bit(o));
+            }
+        }
     }
 
     #[inline]
@@ -53,9 +64,21 @@ impl<R: Record> Paths for Tiled<'_, R> {
         dist: f32,
         (hit, light, depth): (Hit, usize, u32),
     ) -> bool {
+        let from = (hit.object, hit.outside);
+        if !self.record.tracks() {
+            return p.occluded_towards(from, light, shadow, dist);
+        }
         let free = Self::from_eye_on_plane(p, hit, depth);
         self.record.segment(shadow, dist, free);
-        p.occluded_towards((hit.object, hit.outside), light, shadow, dist)
+        let Some(k) = p.blocker_towards(from, light, shadow, dist) else {
+            return false;
+        };
+        // A blocked shadow ray stays blocked whatever comes near it, but for
+        // its blocker moving away (a still one never does).
+        let bit = p.moving_bit(k);
+        let ball = matches!(p.scene.objects[k].shape, Shape::Sphere { .. });
+        self.record.blocked(if ball { (bit, 0) } else { (0, bit) });
+        true
     }
 
     #[inline]

@@ -5,9 +5,8 @@
 use super::Seg;
 use glam::Vec3;
 
-/// A moved object where it was or where it is, grown by [`Near::PAD`], with its
-/// bounding box: a ray segment that stays farther from it cannot have met it,
-/// nor can it now.
+/// A moved object where it is now, grown by [`Near::PAD`], with its bounding
+/// box: a ray segment that stays farther from it cannot meet it.
 #[derive(Debug, Clone, Copy)]
 pub struct Near {
     pub(super) shape: NearShape,
@@ -98,7 +97,7 @@ impl Near {
 }
 
 /// Distance from `c` to the segment `p`..`q`.
-fn point_segment(c: Vec3, p: Vec3, q: Vec3) -> f32 {
+pub(crate) fn point_segment(c: Vec3, p: Vec3, q: Vec3) -> f32 {
     let d = q - p;
     let len2 = d.length_squared();
     let t = if len2 > 0.0 {

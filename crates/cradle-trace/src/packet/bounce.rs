@@ -46,8 +46,8 @@ type Level<F> = (L3<F>, F, u8);
 /// The bounces of the lanes' rays: the lights of what they meet, and the
 /// radiance bound that ends a path whose weight cannot matter any more.
 #[derive(Clone, Copy)]
-pub(super) struct Bounces<'a, 'p> {
-    pub(super) lights: Lights<'a, 'p>,
+pub(super) struct Bounces<'a, 'p, const T: bool> {
+    pub(super) lights: Lights<'a, 'p, T>,
     pub(super) bound: f32,
 }
 
@@ -56,9 +56,9 @@ pub(super) struct Bounces<'a, 'p> {
 /// kernel and its mirrors), which made the crate slow to compile; the AVX2
 /// copy is compiled for AVX2. Lane values cross the call as arrays.
 #[inline(never)]
-pub(super) fn bounce_copy<S: Simd>(
+pub(super) fn bounce_copy<S: Simd, const T: bool>(
     s: S,
-    bounces: Bounces<'_, '_>,
+    bounces: Bounces<'_, '_, T>,
     first: &Bounce8,
     live: u8,
     found: Option<Found<F8>>,
@@ -72,14 +72,14 @@ pub(super) fn bounce_copy<S: Simd>(
 }
 
 /// [`Bounces::lanes`] as a lane kernel.
-struct BounceKernel<'k, 'p> {
-    bounces: Bounces<'k, 'p>,
+struct BounceKernel<'k, 'p, const T: bool> {
+    bounces: Bounces<'k, 'p, T>,
     first: &'k Bounce8,
     live: u8,
     found: Option<Found<F8>>,
 }
 
-impl Kernel for BounceKernel<'_, '_> {
+impl<const T: bool> Kernel for BounceKernel<'_, '_, T> {
     type Output = V8;
     #[inline(always)]
     fn run<S: Simd>(self, s: S) -> V8 {
@@ -87,7 +87,7 @@ impl Kernel for BounceKernel<'_, '_> {
     }
 }
 
-impl Bounces<'_, '_> {
+impl<const T: bool> Bounces<'_, '_, T> {
     /// [`Self::lanes`] through build `S`'s own copy.
     #[inline(always)]
     pub(super) fn trace<S: Simd>(
@@ -198,12 +198,8 @@ impl Bounces<'_, '_> {
         // rays off a plane.
         let free = if ray.depth == 0 { 0xFF } else { ray.free };
         // `shade` of no hit notes the ray to infinity.
-        self.lights.notes.note(
-            s,
-            (missed, free),
-            (&ray.origin, &ray.d),
-            s.splat(f32::INFINITY),
-        );
+        let (origin, d, inf) = (&ray.origin, &ray.d, s.splat(f32::INFINITY));
+        (self.lights.notes).note::<T, S>(s, (missed, free), (origin, d), inf);
         let mut color = splat3(s, p.scene.background);
         let (mut reflectivity, mut reflect) = (s.splat(0.0), 0u8);
         let mut next = Bounce {
@@ -240,9 +236,9 @@ impl Bounces<'_, '_> {
             let outside = !S::bits(inside);
             let lost = group & !S::bits(S::lt(t, s.splat(f32::INFINITY)));
             // `shade` notes its ray up to the hit.
-            self.lights
-                .notes
-                .note(s, (group & !lost, free), (&ray.origin, &ray.d), t);
+            let met = (t, || p.moving_bit(k));
+            let rays = (&ray.origin, &ray.d);
+            (self.lights.notes).note_met::<T, S>(s, (group & !lost, free), rays, met);
             for i in (0..LANES).filter(|i| lost >> i & 1 != 0) {
                 // Not met by the hit test after all: the scalar path.
                 self.lane_scalar::<S>((i, free), (ray, &lane_ray(i)), None, &mut scalar);

@@ -26,12 +26,12 @@ const SMALL: f32 = 4_194_304.0; // 2^22
 /// The lights of a surface: the scene's queries for its shadow rays, and
 /// the notes the rays leave in a tracked frame.
 #[derive(Clone, Copy)]
-pub(super) struct Lights<'a, 'p> {
-    pub(super) scan: Scan<'a, 'p>,
+pub(super) struct Lights<'a, 'p, const T: bool> {
+    pub(super) scan: Scan<'a, 'p, T>,
     pub(super) notes: &'a LaneNotes,
 }
 
-impl Lights<'_, '_> {
+impl<const T: bool> Lights<'_, '_, T> {
     /// `shade`'s lights of what the lanes `on` met (`met`) at `hit`, before
     /// any reflection: ambient, Lambert and Phong terms, each light's shadow
     /// rays traced over the lanes (free in the lanes of `free`,
@@ -88,7 +88,7 @@ impl Lights<'_, '_> {
             let want = S::select(s.mask(on), lambert, k(0.0));
             // !(lambert <= 0): a NaN lambert is traced, as in the scalar code.
             let traced = S::bits(!S::le(want, k(0.0)));
-            self.notes.note(s, (traced, free), (start, &to_light), dist);
+            (self.notes).note::<T, S>(s, (traced, free), (start, &to_light), dist);
             let rays = (start, &to_light, dist);
             let blocked = match met {
                 Met::Floor(floor) => self.shadows(s, floor, li, rays, want),
@@ -110,6 +110,7 @@ impl Lights<'_, '_> {
                     )
                 }
             };
+            (self.notes).after_shadows::<T>(traced & S::bits(blocked), self.scan.p);
             // Skipped where lambert <= 0 or the light is blocked; else
             // color += base * light_color * lambert.
             let lit = !S::le(lambert, k(0.0)) & !blocked;

@@ -5,7 +5,7 @@
 //! any bounce (as `Prepared::closest_from`: the planes but the one a lane's
 //! ray leaves, then the bounded objects in runs of up to eight behind their
 //! chunk's hull, or, in a large scene, each lane through the hierarchy); and
-//! the shadow rays of the floor (`Prepared::occluded_by`: the planes, the
+//! the shadow rays of the floor (`Prepared::blocker_by`: the planes, the
 //! group box, then the objects the lane's footprint cell lists) and of a
 //! bounded object (`Prepared::occluded_towards`: the casters of the piece and
 //! side each lane starts from).
@@ -50,11 +50,14 @@ pub(super) struct Rays<'a, F> {
 /// The prepared scene as the lanes see it: each query answers for eight
 /// rays at once what `Prepared`'s scalar query answers for each.
 #[derive(Clone, Copy)]
-pub(super) struct Scan<'a, 'p> {
+pub(super) struct Scan<'a, 'p, const T: bool> {
     pub(super) p: &'a Prepared<'p>,
+    /// In a tracked frame (`T`), per lane the first object a shadow test
+    /// found blocking its ray (`u32::MAX`: none, or a plane), for its notes.
+    pub(super) first: &'a std::cell::Cell<[u32; LANES]>,
 }
 
-impl Scan<'_, '_> {
+impl<const T: bool> Scan<'_, '_, T> {
     /// Per lane of `live`, the nearest hit of its ray as `closest_from` finds
     /// it (the planes but the one the lane's ray leaves, `Bounce::from`, then
     /// inside the box around them the bounded objects in
@@ -226,8 +229,27 @@ impl Scan<'_, '_> {
         live: u8,
     ) -> u8 {
         let mut out = 0;
+        if !T {
+            for k in ks {
+                out |= self.blocks(s, k, r, live & !out);
+                if out == live {
+                    break;
+                }
+            }
+            return out;
+        }
         for k in ks {
-            out |= self.blocks(s, k, r, live & !out);
+            let new = self.blocks(s, k, r, live & !out);
+            if new != 0 {
+                let mut ids = self.first.get();
+                for (i, id) in ids.iter_mut().enumerate() {
+                    if new >> i & 1 != 0 {
+                        *id = k as u32;
+                    }
+                }
+                self.first.set(ids);
+            }
+            out |= new;
             if out == live {
                 break;
             }
@@ -235,9 +257,10 @@ impl Scan<'_, '_> {
         out
     }
 
-    /// Per lane (bits), `Prepared::occluded_by(ray, dist, footprints)` for the
-    /// shadow rays from `start` along `dir` towards light `li` of floor object
-    /// `plane`, for the lanes in `want` (the others answer false).
+    /// Per lane (bits), whether `Prepared::blocker_by(ray, dist, footprints)`
+    /// finds a blocker of the shadow rays from `start` along `dir` towards
+    /// light `li` of floor object `plane`, for the lanes in `want` (the others
+    /// answer false).
     #[inline(always)]
     pub(super) fn occluded_lanes<S: Simd>(
         self,

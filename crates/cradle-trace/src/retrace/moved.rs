@@ -6,7 +6,7 @@
 use super::Spans;
 use crate::bits::BitRoom;
 use crate::motion::{BLOCK, RowMotion, SUPER};
-use crate::motion::{Batch, Cells, NearSet};
+use crate::motion::{Batch, Cells, HITS, MET, Near, NearSet, SHADOW, Seg, point_segment};
 use crate::simd::{Build, Kernel, Simd};
 use crate::tuning::PREFETCH_AHEAD;
 use glam::Vec3;
@@ -27,6 +27,15 @@ pub(crate) struct Moved {
     /// Per row, where the moved shapes may meet pixels' free segments, which
     /// leave no cells (`Record::segment`'s `free`).
     pub(crate) spans: Spans,
+    /// The moved balls: where each was and is, and its radius.
+    pub(crate) balls: Vec<(Vec3, Vec3, f32)>,
+    /// The [`MET`] bits of the moved objects that no object that stayed
+    /// shares: a pixel with one is taken at once.
+    pub(crate) sure: Cells,
+    /// The moved objects where they were whose bits an object that stayed
+    /// shares, each with its bit: a pixel with such a bit is taken where one
+    /// of its segments comes near one of them.
+    pub(crate) was: Vec<(Cells, Near)>,
 }
 
 impl Moved {
@@ -38,14 +47,20 @@ impl Moved {
 
     /// Into `out` (emptied first), the pixels of row `y`, whose record is `rm`
     /// (sealed), that may have changed, in order; false when no pixel may. A
-    /// pixel may have changed when its cells meet the moved ones or it lies in
-    /// the row's [`Spans`], and (in a tracked record of a frame without a
-    /// moved plane) one of its segments near the moved shapes' box comes within
-    /// a moved shape whose cells meet its own, or any moved shape for a pixel
-    /// in the spans ([`crate::motion::Near::meets`]), unless it passes well
-    /// through a moved ball where it was and where it is (a shadow ray blocked
-    /// both times, [`NearSet::with_balls`]). Blocks neither reaches are skipped
-    /// whole; the segments are tested eight at a time ([`Batch`]). With
+    /// pixel may have changed when one of its rays met a moved object where
+    /// it was (its [`MET`] bits: taken at once where no object that stayed
+    /// shares the bit, [`Self::sure`], else where one of its segments comes
+    /// near a moved object's old place, [`Self::was`]); when a shadow ray of it was
+    /// blocked by a moved ball (its [`SHADOW`] bits) and that ray's flagged
+    /// segment may be blocked no more (`Self::unblocked`); or when its cells
+    /// meet the moved ones or it lies in the row's [`Spans`], and (in a
+    /// tracked record of a frame without a moved plane) one of its other
+    /// segments near the moved shapes' box comes within a moved shape where
+    /// it is now, whose cells meet its own, or any moved shape for a pixel in
+    /// the spans ([`crate::motion::Near::meets`]). Where a moved object was
+    /// matters only to the rays that met it, and those carry its bit. Blocks
+    /// none of this reaches are skipped whole; the segments are tested eight
+    /// at a time ([`Batch`]). With
     /// `sure`, a pixel in the row's sure runs ([`Spans::sure_row`]: its centre
     /// well inside a moved ball's image) is taken without its segments: its
     /// centre ray meets the ball unless something hides it, and a pixel taken
@@ -143,6 +158,9 @@ impl Moved {
         (batch, hit): (&mut Batch, &mut crate::bits::RowBits<'_>),
     ) {
         let cells_only = !rm.tracked() || self.coarse;
+        // Whether a pixel of the block met a moved object (hit bits): where
+        // none did, a pixel in a run need not read its cells.
+        let hits = rm.blocks[xs.start / BLOCK] & self.cells & HITS != 0;
         for k in xs {
             // The segments of a pixel further on, on their way (every pixel
             // of the block: the candidates among them are not known yet).
@@ -154,12 +172,33 @@ impl Moved {
             }
             // In a run, any moved shape may meet a free segment.
             let in_run = runs.get(*r).is_some_and(|run| run.0 as usize <= k);
-            let cells = if in_run {
-                Cells::MAX
+            let own = if in_run && !hits {
+                0
             } else {
                 rm.cells[k] & self.cells
             };
-            if cells == 0 {
+            // The moved balls (or those sharing their bits) that blocked a
+            // shadow ray of the pixel.
+            let mut shadow = 0;
+            if own & HITS != 0 {
+                // A ray of the pixel met a moved object where it was.
+                let met = own & MET;
+                if met != 0
+                    && (cells_only
+                        || met & self.sure != 0
+                        || rm.of(k).iter().any(|seg| self.met_before(seg, met)))
+                {
+                    hit.set(k);
+                    continue;
+                }
+                shadow = own & SHADOW;
+            }
+            let cells = if in_run {
+                Cells::MAX & !HITS
+            } else {
+                own & !HITS
+            };
+            if cells == 0 && shadow == 0 {
                 continue;
             }
             if cells_only {
@@ -177,6 +216,15 @@ impl Moved {
                 if hit.has(k) {
                     break;
                 }
+                if seg.flagged() {
+                    if shadow != 0 && self.unblocked(seg) {
+                        hit.set(k);
+                    }
+                    continue;
+                }
+                if cells == 0 {
+                    continue;
+                }
                 let near_box =
                     seg.a.max(seg.b).cmpge(self.lo).all() && seg.a.min(seg.b).cmple(self.hi).all();
                 if near_box && batch.push(k as u32, cells, seg) {
@@ -184,6 +232,51 @@ impl Moved {
                 }
             }
         }
+    }
+}
+
+impl Moved {
+    /// Whether `seg` comes near one of the moved objects where they were
+    /// whose bits are among `met` ([`Self::was`]).
+    fn met_before(&self, seg: &Seg, met: Cells) -> bool {
+        (self.was.iter()).any(|(bit, n)| bit & met != 0 && n.meets(seg))
+    }
+
+    /// Whether the blocked shadow ray of `seg` (flagged) may be blocked no
+    /// more: it meets a moved ball where it was, and passes well through none
+    /// where it is (its nearest point to the centre inside it and deeper than
+    /// the pad, both ends outside the ball and the pad).
+    fn unblocked(&self, seg: &Seg) -> bool {
+        let pad = Near::PAD;
+        let (p, q) = (seg.a, seg.b);
+        let d = q - p;
+        let d2 = d.length_squared();
+        let mut met = false;
+        for &(c0, _, r) in &self.balls {
+            if point_segment(c0, p, q) <= r + pad {
+                met = true;
+                break;
+            }
+        }
+        if !met {
+            return false;
+        }
+        for &(_, c1, r) in &self.balls {
+            let (w, v) = (c1 - p, c1 - q);
+            let wd = w.dot(d);
+            let c2 = w.cross(d).length_squared();
+            let (inner, outer) = (r - pad, r + pad);
+            let out2 = outer * outer * 1.001;
+            if c2 * 1.001 < inner * inner * d2
+                && 0.0 < wd
+                && wd < d2
+                && out2 < w.length_squared()
+                && out2 < v.length_squared()
+            {
+                return false;
+            }
+        }
+        true
     }
 }
 
@@ -219,5 +312,124 @@ impl Kernel for Dirty<'_> {
     #[inline(always)]
     fn run<S: Simd>(self, s: S) -> bool {
         self.moved.dirty_with(s, self.at, self.out)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Moved;
+    use crate::motion::{Cells, Near, NearSet, RowMotion, Seg};
+    use crate::scene::Shape;
+    use glam::Vec3;
+
+    /// The hit bit of the moving object of rank `r` (`moving_bits`).
+    fn met(r: u32) -> Cells {
+        1 << (64 + r)
+    }
+
+    /// The moved ball of rank 0 and radius 0.02 m, from `c0` to `c1`: its hit
+    /// and shadow bits, no cells of the grid.
+    fn ball_moved(c0: Vec3, c1: Vec3) -> Moved {
+        Moved {
+            cells: met(0) | met(0) << 32,
+            near: NearSet::new(Vec::new()),
+            lo: Vec3::INFINITY,
+            hi: Vec3::NEG_INFINITY,
+            balls: vec![(c0, c1, 0.02)],
+            sure: met(0),
+            ..Moved::default()
+        }
+    }
+
+    /// A tracked row of pixels, each with its cells and segments.
+    fn row(pixels: &[(Cells, Vec<Seg>)]) -> RowMotion {
+        let mut rm = RowMotion::new(pixels.len(), true);
+        for (k, (cells, segs)) in pixels.iter().enumerate() {
+            rm.begin(true);
+            rm.cells[k] = *cells;
+            rm.segs.extend_from_slice(segs);
+        }
+        rm.begin(true);
+        rm.seal();
+        rm
+    }
+
+    /// The pixels of `rm` that `moved` takes.
+    fn taken(moved: &Moved, rm: &RowMotion) -> Vec<u32> {
+        let mut out = Vec::new();
+        moved.dirty(0, rm, (false, &[]), &mut out);
+        out
+    }
+
+    /// A blocked shadow ray's segment along y through the origin, 0.2 m long.
+    fn shadow_through_origin() -> Seg {
+        let mut s = Seg {
+            a: Vec3::new(0.0, -0.1, 0.0),
+            b: Vec3::new(0.0, 0.1, 0.0),
+        };
+        s.flag();
+        s
+    }
+
+    #[test]
+    fn a_pixel_whose_ray_met_a_moved_object_is_taken_without_its_segments() {
+        let moved = ball_moved(Vec3::ZERO, Vec3::new(0.001, 0.0, 0.0));
+        // Met the moved ball; met a moving object that did not move this
+        // time; met nothing that moves.
+        let rm = row(&[(met(0), vec![]), (met(1), vec![]), (0, vec![])]);
+        assert_eq!(taken(&moved, &rm), [0]);
+    }
+
+    #[test]
+    fn a_shared_bit_takes_a_pixel_only_where_it_met_the_moved_object() {
+        // Ball 0 moved; an object that stayed shares its bit, so the bit is
+        // not sure, and its old place decides.
+        let mut moved = ball_moved(Vec3::ZERO, Vec3::new(0.001, 0.0, 0.0));
+        moved.sure = 0;
+        let was = Shape::Sphere {
+            centre: Vec3::ZERO,
+            radius: 0.02,
+        };
+        moved.was = vec![(met(0), Near::of(&was).unwrap())];
+        // A camera ray that ended on the ball where it was (its hit 3e-6 m
+        // off the surface), and one that ended on the other object 10 cm
+        // away.
+        let on_it = Seg {
+            a: Vec3::new(0.0, 0.0, 0.5),
+            b: Vec3::new(0.0, 0.0, 0.020_003),
+        };
+        let elsewhere = Seg {
+            a: Vec3::new(0.1, 0.0, 0.5),
+            b: Vec3::new(0.1, 0.0, 0.02),
+        };
+        let rm = row(&[(met(0), vec![on_it]), (met(0), vec![elsewhere])]);
+        assert_eq!(taken(&moved, &rm), [0]);
+    }
+
+    #[test]
+    fn a_blocked_shadow_ray_is_traced_again_only_when_its_ball_leaves_it() {
+        let shadow = met(0) << 32;
+        // A ray blocked by the ball where it was, and one that passed 5 cm
+        // from it (a pixel with the ball's shadow bit from another ray).
+        let mut aside = shadow_through_origin();
+        aside.a.x += 0.05;
+        aside.b.x += 0.05;
+        aside.flag();
+        let rm = row(&[
+            (shadow, vec![shadow_through_origin()]),
+            (shadow, vec![aside]),
+        ]);
+        // Moved 10 cm away: the core's ray is lit again.
+        let away = ball_moved(Vec3::ZERO, Vec3::new(0.1, 0.0, 0.0));
+        assert_eq!(taken(&away, &rm), [0]);
+        // Moved 2 mm: the ray still passes 18 mm deep through it.
+        let still = ball_moved(Vec3::ZERO, Vec3::new(0.002, 0.0, 0.0));
+        assert!(taken(&still, &rm).is_empty());
+        // Moved onto the ray's end: no longer well through, so it may be lit.
+        let edge = ball_moved(Vec3::ZERO, Vec3::new(0.0, 0.095, 0.0));
+        assert_eq!(taken(&edge, &rm), [0]);
+        // Without the ball's shadow bit a flagged segment is not read.
+        let rm = row(&[(0, vec![shadow_through_origin()])]);
+        assert!(taken(&away, &rm).is_empty());
     }
 }
