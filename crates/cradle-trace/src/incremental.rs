@@ -250,7 +250,7 @@ fn moved(
         if let (Shape::Sphere { centre: c0, .. }, Shape::Sphere { centre, radius }) =
             (before[i], *is)
         {
-            out.balls.push((c0, centre, radius));
+            out.balls.push((c0, centre, radius, bits[i] << 32));
         }
         let cells = shape_cells(grid, is) & !HITS;
         out.cells |= cells;

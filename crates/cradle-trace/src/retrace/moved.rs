@@ -27,8 +27,9 @@ pub(crate) struct Moved {
     /// Per row, where the moved shapes may meet pixels' free segments, which
     /// leave no cells (`Record::segment`'s `free`).
     pub(crate) spans: Spans,
-    /// The moved balls: where each was and is, and its radius.
-    pub(crate) balls: Vec<(Vec3, Vec3, f32)>,
+    /// The moved balls: where each was and is, its radius, and its
+    /// [`SHADOW`] bit.
+    pub(crate) balls: Vec<(Vec3, Vec3, f32, Cells)>,
     /// The [`MET`] bits of the moved objects that no object that stayed
     /// shares: a pixel with one is taken at once.
     pub(crate) sure: Cells,
@@ -217,7 +218,7 @@ impl Moved {
                     break;
                 }
                 if seg.flagged() {
-                    if shadow != 0 && self.unblocked(seg) {
+                    if shadow != 0 && self.unblocked(seg, shadow) {
                         hit.set(k);
                     }
                     continue;
@@ -243,17 +244,20 @@ impl Moved {
     }
 
     /// Whether the blocked shadow ray of `seg` (flagged) may be blocked no
-    /// more: it meets a moved ball where it was, and passes well through none
-    /// where it is (its nearest point to the centre inside it and deeper than
-    /// the pad, both ends outside the ball and the pad).
-    fn unblocked(&self, seg: &Seg) -> bool {
+    /// more: it meets a moved ball of the pixel's `shadow` bits where it was,
+    /// and passes well through none of them where they are (its nearest point
+    /// to the centre inside it and deeper than the pad, both ends outside the
+    /// ball and the pad). Only those balls: a pixel kept because its ray
+    /// passes through another ball would keep a record that names a blocker
+    /// no longer in the way, and miss that ball leaving later.
+    fn unblocked(&self, seg: &Seg, shadow: Cells) -> bool {
         let pad = Near::PAD;
         let (p, q) = (seg.a, seg.b);
         let d = q - p;
         let d2 = d.length_squared();
         let mut met = false;
-        for &(c0, _, r) in &self.balls {
-            if point_segment(c0, p, q) <= r + pad {
+        for &(c0, _, r, bit) in &self.balls {
+            if bit & shadow != 0 && point_segment(c0, p, q) <= r + pad {
                 met = true;
                 break;
             }
@@ -261,7 +265,10 @@ impl Moved {
         if !met {
             return false;
         }
-        for &(_, c1, r) in &self.balls {
+        for &(_, c1, r, bit) in &self.balls {
+            if bit & shadow == 0 {
+                continue;
+            }
             let (w, v) = (c1 - p, c1 - q);
             let wd = w.dot(d);
             let c2 = w.cross(d).length_squared();
@@ -335,7 +342,7 @@ mod tests {
             near: NearSet::new(Vec::new()),
             lo: Vec3::INFINITY,
             hi: Vec3::NEG_INFINITY,
-            balls: vec![(c0, c1, 0.02)],
+            balls: vec![(c0, c1, 0.02, met(0) << 32)],
             sure: met(0),
             ..Moved::default()
         }
@@ -428,6 +435,15 @@ mod tests {
         // Moved onto the ray's end: no longer well through, so it may be lit.
         let edge = ball_moved(Vec3::ZERO, Vec3::new(0.0, 0.095, 0.0));
         assert_eq!(taken(&edge, &rm), [0]);
+        // Moved away while another moved ball (bit 1, not the pixel's) came
+        // to lie across the ray: traced again, so its record names the new
+        // blocker.
+        let mut other = away.clone();
+        other.cells |= met(1) | met(1) << 32;
+        other
+            .balls
+            .push((Vec3::new(0.3, 0.0, 0.0), Vec3::ZERO, 0.02, met(1) << 32));
+        assert_eq!(taken(&other, &rm), [0]);
         // Without the ball's shadow bit a flagged segment is not read.
         let rm = row(&[(0, vec![shadow_through_origin()])]);
         assert!(taken(&away, &rm).is_empty());
