@@ -179,6 +179,19 @@ pub fn moving_bits(objects: &[crate::scene::Object]) -> Vec<Cells> {
         .collect()
 }
 
+/// What a shadow ray blocked first by `object`, whose bit among the moving
+/// objects is `bit` ([`moving_bits`]), notes: a moving ball's [`SHADOW`] bit
+/// (its bit 32 up), another moving object's [`MET`] bit, or nothing for a
+/// still one.
+#[must_use]
+pub(crate) fn blocker_bits(object: &crate::scene::Object, bit: Cells) -> Cells {
+    if matches!(object.shape, crate::scene::Shape::Sphere { .. }) {
+        bit << 32
+    } else {
+        bit
+    }
+}
+
 /// The bit of place `p` in a row of `n` (`p < n`): its own up to 32 places;
 /// beyond, 16 bits for each half of the row, one place each at its end and
 /// groups that grow towards the middle (the g-th starting `max(g, h g^3 /
@@ -247,12 +260,11 @@ pub(crate) trait Record {
     fn segment(&mut self, ray: &Ray, t_max: f32, free: bool);
     /// Notes the moving objects a ray met ([`HITS`] bits).
     fn hit(&mut self, bits: Cells);
-    /// The shadow ray whose segment it noted last was blocked, first by a
-    /// moving ball (`ball`, its [`MET`] bit: the ball's [`SHADOW`] bit is
-    /// noted), or else by another moving object (`other`, its bit, noted):
-    /// the segment stays, flagged. Blocked first by a still object (0, 0),
-    /// it stays blocked whatever moves: the segment goes.
-    fn blocked(&mut self, by: (Cells, Cells));
+    /// The shadow ray whose segment it noted last was blocked, first by an
+    /// object whose bits as a blocker are `by` ([`blocker_bits`]): a moving
+    /// one's are noted and the segment stays, flagged; a still one (0) keeps
+    /// it blocked whatever moves, and the segment goes.
+    fn blocked(&mut self, by: Cells);
     /// Whether it notes anything (an untracked frame's does not: the
     /// blockers of its shadow rays need not be found).
     fn tracks(&self) -> bool;
@@ -268,7 +280,7 @@ impl Record for NoRecord {
     #[inline]
     fn hit(&mut self, _: Cells) {}
     #[inline]
-    fn blocked(&mut self, _: (Cells, Cells)) {}
+    fn blocked(&mut self, _: Cells) {}
     #[inline]
     fn tracks(&self) -> bool {
         false
@@ -334,15 +346,15 @@ impl Record for Motion {
         }
     }
 
-    fn blocked(&mut self, (ball, other): (Cells, Cells)) {
+    fn blocked(&mut self, by: Cells) {
         let Some(at) = self.last.take() else {
             return;
         };
-        if ball | other == 0 {
+        if by == 0 {
             self.segs.truncate(at);
         } else {
             self.segs[at].flag();
-            self.mask |= ball << 32 | other;
+            self.mask |= by;
         }
     }
 
@@ -366,9 +378,10 @@ mod tests {
         })
     }
 
-    /// A shadow ray's segment, noted, then reported blocked by `by`:
+    /// A shadow ray's segment, noted, then reported blocked by `by`
+    /// ([`super::blocker_bits`]):
     /// what the record keeps.
-    fn blocked(by: (u128, u128)) -> Motion {
+    fn blocked(by: u128) -> Motion {
         let mut m = Motion::new(Some(grid()));
         let ray = Ray {
             origin: Vec3::new(0.0, 0.05, 0.0),
@@ -385,21 +398,21 @@ mod tests {
         let bit = 1u128 << 64;
         // Blocked first by a moving ball: kept, flagged, with the ball's
         // shadow bit (the same rank, 32 bits up) and not its hit bit.
-        let m = blocked((bit, 0));
+        let m = blocked(bit << 32);
         assert_eq!(m.segs.len(), 1);
         assert!(m.segs[0].flagged());
         assert_eq!(m.mask & SHADOW, bit << 32);
         assert_eq!(m.mask & MET, 0);
         // By another moving object (a string): kept, flagged, with the
         // object's hit bit.
-        let m = blocked((0, bit));
+        let m = blocked(bit);
         assert_eq!(m.segs.len(), 1);
         assert!(m.segs[0].flagged());
         assert_eq!(m.mask & MET, bit);
         assert_eq!(m.mask & SHADOW, 0);
         // By a still object: the ray stays blocked whatever moves, so
         // nothing of it is kept but the cells it passed.
-        let m = blocked((0, 0));
+        let m = blocked(0);
         assert!(m.segs.is_empty());
         assert_eq!(m.mask & (MET | SHADOW), 0);
         assert_ne!(m.mask, 0, "its cells are kept");
@@ -456,7 +469,7 @@ mod tests {
             dir: Vec3::Y,
         };
         m.segment(&outside, 1.0, false);
-        m.blocked((1 << 64, 0));
+        m.blocked(1 << 96);
         assert_eq!(m.segs.len(), 1);
         assert!(!m.segs[0].flagged());
         assert_eq!(m.mask & (MET | SHADOW), 0);

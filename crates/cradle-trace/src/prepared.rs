@@ -10,7 +10,7 @@ use super::bvh::{Bvh, runs};
 use super::casters::{Casters, clear_of, piece_boxes};
 use super::geometry::{Aabb, Geom, Hit, Ray, bounds, hit_plane, hit_sphere};
 use super::material::Phong;
-use super::motion::{Cells, moving_bits};
+use super::motion::{Cells, blocker_bits, moving_bits};
 use super::scene::{Scene, Shape};
 use super::shadow::Footprints;
 use super::wide::{W, WIDE_AT_MOST, WideBoxes};
@@ -115,6 +115,13 @@ impl<'a> Prepared<'a> {
     #[must_use]
     pub(crate) fn moving_bit(&self, i: usize) -> Cells {
         self.moving_bits[i]
+    }
+
+    /// What a shadow ray blocked first by object `i` notes
+    /// ([`blocker_bits`]).
+    #[must_use]
+    pub(crate) fn blocker_bits(&self, i: usize) -> Cells {
+        blocker_bits(&self.scene.objects[i], self.moving_bits[i])
     }
 
     /// Object `i`'s shape with what its hit test needs.

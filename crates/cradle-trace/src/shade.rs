@@ -75,9 +75,7 @@ impl<R: Record> Paths for Tiled<'_, R> {
         };
         // A blocked shadow ray stays blocked whatever comes near it, but for
         // its blocker moving away (a still one never does).
-        let bit = p.moving_bit(k);
-        let ball = matches!(p.scene.objects[k].shape, Shape::Sphere { .. });
-        self.record.blocked(if ball { (bit, 0) } else { (0, bit) });
+        self.record.blocked(p.blocker_bits(k));
         true
     }
 

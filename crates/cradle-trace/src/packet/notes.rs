@@ -19,7 +19,6 @@ use super::vec::{L3, store3};
 use crate::geometry::Ray;
 use crate::motion::{Cells, Motion, MotionGrid, Seg};
 use crate::prepared::Prepared;
-use crate::scene::Shape;
 use crate::simd::Simd;
 use glam::Vec3;
 use std::cell::{Cell, RefCell};
@@ -133,19 +132,17 @@ impl LaneNotes {
             if last[i] == u32::MAX || at >= segs[i].len() {
                 continue;
             }
-            let k = ids[i] as usize;
-            let bit = if ids[i] == u32::MAX {
+            let by = if ids[i] == u32::MAX {
                 0
             } else {
-                p.moving_bit(k)
+                p.blocker_bits(ids[i] as usize)
             };
-            if bit == 0 {
+            if by == 0 {
                 segs[i].truncate(at);
                 continue;
             }
             segs[i][at].flag();
-            let ball = matches!(p.scene.objects[k].shape, Shape::Sphere { .. });
-            marks[i].set(marks[i].get() | if ball { bit << 32 } else { bit });
+            marks[i].set(marks[i].get() | by);
         }
     }
 
