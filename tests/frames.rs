@@ -181,6 +181,19 @@ fn incremental_frames_equal_full_renders_over_300_frames_of_a_swing() {
 }
 
 #[test]
+fn incremental_frames_equal_full_renders_where_shadows_reach_behind_the_eye() {
+    // Along a long row from its left end: the blue light throws the left
+    // strings' shadows back past the eye, so the screen's runs hold only what
+    // of them lies in front.
+    let mut config = small_cradle((160, 80), 50, 1, 0.0);
+    config.camera.position = [-1.372, 0.3, 0.5];
+    config.camera.look_at = [-0.548, 0.09, -0.026];
+    config.camera.fit = false;
+    let (share, _) = incremental_swing_equals_full(&config, "50 balls from the row's end");
+    assert!(share > 0.0 && share < 0.5, "re-traces {share:.2}");
+}
+
+#[test]
 fn anti_aliased_incremental_frames_equal_full_renders_over_300_frames() {
     // Adaptive anti-aliasing: an edge depends on the neighbours' colours, so a
     // frame re-tests the edges around every changed pixel and supersamples again

@@ -195,6 +195,19 @@ impl Aabb {
         }
     }
 
+    /// Its 8 corners: bit 0 of the index picks `max.x` over `min.x`, bit 1
+    /// `max.y`, bit 2 `max.z`.
+    #[must_use]
+    pub fn corners(&self) -> [Vec3; 8] {
+        std::array::from_fn(|i| {
+            Vec3::new(
+                if i & 1 == 0 { self.min.x } else { self.max.x },
+                if i & 2 == 0 { self.min.y } else { self.max.y },
+                if i & 4 == 0 { self.min.z } else { self.max.z },
+            )
+        })
+    }
+
     /// Whether the ray meets the box between `T_MIN` and `t_max` (slab test).
     #[must_use]
     pub fn hit(&self, ray: &Ray, inv_dir: Vec3, t_max: f32) -> bool {

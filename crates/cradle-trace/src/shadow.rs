@@ -246,12 +246,7 @@ impl Footprints {
     fn rect(&self, b: &Aabb) -> Option<(Vec2, Vec2)> {
         let mut lo = Vec2::splat(f32::INFINITY);
         let mut hi = Vec2::splat(f32::NEG_INFINITY);
-        for k in 0..8 {
-            let c = Vec3::new(
-                if k & 1 == 0 { b.min.x } else { b.max.x },
-                if k & 2 == 0 { b.min.y } else { b.max.y },
-                if k & 4 == 0 { b.min.z } else { b.max.z },
-            );
+        for c in b.corners() {
             let p = self.project(c)?;
             lo = lo.min(p);
             hi = hi.max(p);

@@ -40,35 +40,9 @@ impl Reaching {
     }
 }
 
-/// Pixel-space bounds of a box, or `None` when a corner is not in front of the eye
-/// (then the box may cover any pixel).
-fn screen_bounds(cam: &CameraRays, min: Vec3, max: Vec3) -> Option<(f32, f32, f32, f32)> {
-    let mut b = (
-        f32::INFINITY,
-        f32::INFINITY,
-        f32::NEG_INFINITY,
-        f32::NEG_INFINITY,
-    );
-    for i in 0..8 {
-        let corner = Vec3::new(
-            if i & 1 == 0 { min.x } else { max.x },
-            if i & 2 == 0 { min.y } else { max.y },
-            if i & 4 == 0 { min.z } else { max.z },
-        );
-        let (x, y) = cam.project(corner)?;
-        b = (b.0.min(x), b.1.min(y), b.2.max(x), b.3.max(y));
-    }
-    Some(b)
-}
-
 /// The box holding `b` mirrored in the plane through `point` with unit `normal`.
 fn mirrored(b: Aabb, point: Vec3, normal: Vec3) -> Aabb {
-    (0..8).fold(Aabb::EMPTY, |m, k| {
-        let c = Vec3::new(
-            if k & 1 == 0 { b.min.x } else { b.max.x },
-            if k & 2 == 0 { b.min.y } else { b.max.y },
-            if k & 4 == 0 { b.min.z } else { b.max.z },
-        );
+    b.corners().into_iter().fold(Aabb::EMPTY, |m, c| {
         let r = c - 2.0 * (c - point).dot(normal) * normal;
         m.union(Aabb { min: r, max: r })
     })
@@ -208,7 +182,8 @@ fn lists(
 }
 
 /// [`lists`], and each object's pixel rectangle `[x0, y0, x1, y1]` with its margin
-/// (infinite for planes and boxes reaching behind the eye), by object index.
+/// (infinite for planes, open to each side where a box reaches behind the
+/// eye), by object index.
 fn lists_and_rects(
     objects: impl Iterator<Item = (usize, Option<Aabb>)>,
     cam: &CameraRays,
@@ -222,11 +197,13 @@ fn lists_and_rects(
     let mut spans = Vec::new();
     let mut rects = Vec::new();
     for (i, bounds) in objects {
-        // Planes (no bounds) and boxes reaching behind the eye go everywhere.
-        let (x0, y0, x1, y1) = match bounds.and_then(|b| screen_bounds(cam, b.min, b.max)) {
+        // Planes (no bounds) go everywhere; a box where its image in front
+        // of the eye shows (open to each side where it reaches behind,
+        // `CameraRays::hull_box`).
+        let (x0, y0, x1, y1) = match bounds.map(|b| cam.hull_box(&b.corners())) {
             // One pixel of margin covers round-off in the projection and the
             // sub-pixel sample offsets.
-            Some((a, b, c, d)) => (a - 1.0, b - 1.0, c + 1.0, d + 1.0),
+            Some([[a, c], [b, d]]) => (a - 1.0, b - 1.0, c + 1.0, d + 1.0),
             None => (
                 f32::NEG_INFINITY,
                 f32::NEG_INFINITY,

@@ -7,7 +7,9 @@
 //! Each of those regions is bounded by the images of the corners of a box
 //! around the shape (mirrored or cast onto the plane, then seen): for a ball
 //! their screen box, met with the ball's exact one and, row by row, with its
-//! ellipse (`conic`); for a string a rectangle along the image of its axis. Padded, per row, [`Spans`] holds their union
+//! ellipse (`conic`); for a string a rectangle along the image of its axis;
+//! where the images reach behind the eye, the box of what of them lies in
+//! front ([`CameraRays::hull_box`]). Padded, per row, [`Spans`] holds their union
 //! as runs of pixels. `Moved::dirty` takes a pixel in a run as a candidate
 //! whatever its cells.
 
@@ -248,9 +250,15 @@ impl Piece {
                     min: c - Vec3::splat(r),
                     max: c + Vec3::splat(r),
                 };
-                // Both bound the image: the corners' box says it is in front and
-                // bounded, the exact one is tighter.
-                let [bx, by] = screen_box(cam, &b, m)?;
+                // Both bound the image: the box of the corners' images (all
+                // of the maps keep straight lines straight, so the image of
+                // the box is their hull's), and where the ball lies in front
+                // of the eye the exact one, which is tighter.
+                let images = corners(&b, m)?;
+                let [bx, by] = cam.hull_box(&images);
+                if !in_front(cam, &images) {
+                    return Some(Region::Box([bx, by]));
+                }
                 let Some([ex, ey]) = ball_box(cam, (c, r), m) else {
                     return Some(Region::Box([bx, by]));
                 };
@@ -360,27 +368,19 @@ fn apply(m: &Map, x: Vec3) -> Option<Vec3> {
     }
 }
 
-/// The screen box, `[[x0, x1], [y0, y1]]` in pixels, of the images under `m`
-/// of the corners of `b`, which bounds the image of the box (all of the maps
-/// keep straight lines straight, so the image of the box is the hull of its
-/// corners'); `None` (every pixel) where one is unbounded, behind the eye or
-/// not finite.
-fn screen_box(cam: &CameraRays, b: &Aabb, m: &Map) -> Option<[[f32; 2]; 2]> {
-    let mut r = [[f32::INFINITY, f32::NEG_INFINITY]; 2];
-    for i in 0..8 {
-        let corner = Vec3::new(
-            if i & 1 == 0 { b.min.x } else { b.max.x },
-            if i & 2 == 0 { b.min.y } else { b.max.y },
-            if i & 4 == 0 { b.min.z } else { b.max.z },
-        );
-        let (x, y) = cam.project(apply(m, corner)?)?;
-        if !(x.is_finite() && y.is_finite()) {
-            return None;
-        }
-        r[0] = [r[0][0].min(x), r[0][1].max(x)];
-        r[1] = [r[1][0].min(y), r[1][1].max(y)];
+/// The images under `m` of the corners of `b`; `None` where one is unbounded.
+fn corners(b: &Aabb, m: &Map) -> Option<[Vec3; 8]> {
+    let mut out = b.corners();
+    for p in &mut out {
+        *p = apply(m, *p)?;
     }
-    Some(r)
+    Some(out)
+}
+
+/// Whether every one of `points` lies in front of the eye, where
+/// [`CameraRays::project`] places it.
+fn in_front(cam: &CameraRays, points: &[Vec3; 8]) -> bool {
+    points.iter().all(|&p| cam.project(p).is_some())
 }
 
 #[cfg(test)]

@@ -10,8 +10,9 @@ use glam::Vec3;
 /// around it (along its axis, and `g` either side across, which holds the
 /// capsule) has 8 corners whose images bound its image; on the screen they
 /// lie in a rectangle along the image of the axis (a straight line: every map
-/// keeps lines straight), padded by [`PAD_PX`]. `None` where a corner's image
-/// is unbounded or behind the eye.
+/// keeps lines straight), padded by [`PAD_PX`]; where a corner's image lies
+/// behind the eye, the box of the hull's image in front
+/// ([`CameraRays::hull_box`]). `None` where a corner's image is unbounded.
 pub(super) fn rod_region(
     cam: &CameraRays,
     (a, b, g): (Vec3, Vec3, f32),
@@ -21,14 +22,19 @@ pub(super) fn rod_region(
     let w = (b - a).try_normalize().unwrap_or(Vec3::X);
     let (e1, e2) = w.any_orthonormal_pair();
     let (a, b) = (a - w * g, b + w * g);
-    let mut q = [(0.0f32, 0.0f32); 8];
-    for (i, q) in q.iter_mut().enumerate() {
+    let mut images = [Vec3::ZERO; 8];
+    for (i, image) in images.iter_mut().enumerate() {
         let end = if i & 1 == 0 { a } else { b };
         let s1 = if i & 2 == 0 { -g } else { g };
         let s2 = if i & 4 == 0 { -g } else { g };
-        *q = cam.project(apply(m, end + e1 * s1 + e2 * s2)?)?;
-        if !(q.0.is_finite() && q.1.is_finite()) {
-            return None;
+        *image = apply(m, end + e1 * s1 + e2 * s2)?;
+    }
+    let mut q = [(0.0f32, 0.0f32); 8];
+    for (q, &image) in q.iter_mut().zip(&images) {
+        match cam.project(image) {
+            Some(p) if p.0.is_finite() && p.1.is_finite() => *q = p,
+            // Reaching behind the eye: the box of what lies in front.
+            _ => return Some(Region::Box(cam.hull_box(&images))),
         }
     }
     // The axis on the screen: through the images of its ends.

@@ -302,6 +302,58 @@ fn a_slanted_rod_shows_as_a_thin_band_that_holds_it() {
 }
 
 #[test]
+fn a_string_whose_shadow_reaches_behind_the_eye_keeps_to_its_side_of_the_picture() {
+    // Looking towards the point light, which throws a long string's shadow
+    // back past the eye.
+    let mut sc = scene();
+    sc.camera = Camera {
+        position: Vec3::new(0.0, 0.3, -0.5),
+        look_at: Vec3::new(0.0, 0.1, 0.5),
+        fov_deg: 60.0,
+    };
+    let cam = CameraRays::new(&sc.camera, sc.size.0, sc.size.1);
+    let (a, b, r) = (Vec3::new(0.1, 0.4, 0.0), Vec3::new(0.1, 0.11, 0.0), 0.0008);
+    let spans = Spans::new(&cam, &sc, Some(&[Piece::Rod(a, b, r)]));
+    let within = |(x, y): (f32, f32)| {
+        spans
+            .row(y as usize)
+            .iter()
+            .any(|&(p, q)| p as f32 <= x && x < q as f32)
+    };
+    // Points of the string's shadow from the point light, those in front.
+    let (light, _) = lights();
+    let (e1, e2) = (b - a).normalize().any_orthonormal_pair();
+    let (mut shown, mut behind) = (0, 0);
+    for i in 0..=200 {
+        for k in 0..8 {
+            let turn = k as f32 * std::f32::consts::TAU / 8.0;
+            let p = a.lerp(b, i as f32 / 200.0) + r * (e1 * turn.cos() + e2 * turn.sin());
+            let cast = IMAGES[2].1(p, light, Vec3::ZERO);
+            match cam.project(cast) {
+                Some((x, y)) if (0.0..400.0).contains(&x) && (0.0..200.0).contains(&y) => {
+                    assert!(within((x, y)), "the shadow at ({x}, {y}) is in no run");
+                    shown += 1;
+                }
+                Some(_) => {}
+                None => behind += 1,
+            }
+        }
+    }
+    assert!(
+        shown > 100 && behind > 100,
+        "{shown} shown, {behind} behind"
+    );
+    // Its side of the picture, not every pixel.
+    let inside: u32 = (0..200)
+        .flat_map(|y| spans.row(y).iter().map(|&(p, q)| q - p))
+        .sum();
+    assert!(
+        inside < 400 * 200 / 4,
+        "{inside} pixels in runs, {shown} shown"
+    );
+}
+
+#[test]
 fn merged_runs_join_where_they_meet_row_by_row_whatever_the_order() {
     // Row 2: 5..9 and 8..12 overlap, 12..14 touches; 20..22 stands apart.
     // Row 0: one run; row 1 and row 3 none.
