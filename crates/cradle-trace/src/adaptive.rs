@@ -18,7 +18,7 @@ use super::bits::{BitRoom, ascending};
 use super::color::Image;
 use super::frame::{Edges, Frame, least_above};
 use super::motion::RowMotion;
-use super::retrace::{Moved, Notes, retrace_row};
+use super::retrace::{Layer, Moved, Notes, retrace_row};
 use super::supersample::{Supersamples, supersampled};
 use glam::Vec3;
 use rayon::prelude::*;
@@ -358,7 +358,7 @@ fn final_row(
     // they are) and those whose other samples' segments come near a moved
     // object (only edge pixels have cells in `rm`, so its blocks skip the
     // others).
-    if moved.dirty(y as usize, rm, (false, dirty), touched) {
+    if moved.dirty(y as usize, rm, Layer::Edges { is, taken: dirty }, touched) {
         redo.extend(touched.iter().map(|&x| x as usize).filter(|&x| is[x]));
     }
     let written = |(a, b): (u32, u32)| if a < b { [a, b] } else { [0, 0] };

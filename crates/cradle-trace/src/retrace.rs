@@ -13,7 +13,7 @@ use glam::Vec3;
 mod moved;
 mod screen;
 use super::tuning::PACKET_AT_LEAST;
-pub(crate) use moved::Moved;
+pub(crate) use moved::{Layer, Moved};
 pub(crate) use screen::{Piece, Spans};
 
 // A packet's run of pixels is one block, so resealing the blocks of a row's
@@ -62,7 +62,7 @@ pub(crate) fn retrace_row(
         .map(|n| std::mem::take(&mut n.dirty))
         .unwrap_or_default();
     let mut traced = 0;
-    if moved.dirty(y as usize, rm, (true, &[]), &mut dirty) {
+    if moved.dirty(y as usize, rm, Layer::Base, &mut dirty) {
         traced = retrace_dirty(frame, (y, row, rm), (&dirty, offsets), notes.as_deref_mut());
     }
     if let Some(n) = notes {

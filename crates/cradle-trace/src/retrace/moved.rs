@@ -39,6 +39,17 @@ pub(crate) struct Moved {
     pub(crate) was: Vec<(Cells, Near)>,
 }
 
+/// Which of a row's records [`Moved::dirty`] reads.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum Layer<'a> {
+    /// The base layer: a pixel's centre sample, every pixel recorded.
+    Base,
+    /// The edge layer: the other samples of the pixels that are edges, `is`
+    /// (the row's edge flags; the others hold no record), and the pixels
+    /// `taken`, whose base sample is traced again.
+    Edges { is: &'a [bool], taken: &'a [u32] },
+}
+
 impl Moved {
     /// Whether the moved shapes may reach a pixel of row `y`, whose record is
     /// `rm` (sealed).
@@ -68,37 +79,43 @@ impl Moved {
     /// needlessly is only traced again, so the frame keeps its bytes either
     /// way (the base layer, one centre sample, asks for it; the edge layer's
     /// samples lie anywhere in the pixel and each costs three, so it does not).
-    /// The pixels `taken` (ascending: those the caller traces again anyway)
-    /// are in `out` as they are, their segments not tested.
+    /// In the edge layer ([`Layer::Edges`]) the pixels `taken` (ascending:
+    /// those the caller traces again anyway) are in `out` as they are, their
+    /// segments not tested, and only the edge pixels are read.
     pub(crate) fn dirty(
         &self,
         y: usize,
         rm: &RowMotion,
-        (sure, taken): (bool, &[u32]),
+        layer: Layer<'_>,
         out: &mut Vec<u32>,
     ) -> bool {
         out.clear();
         if !self.reaches(y, rm) {
-            out.extend_from_slice(taken);
+            if let Layer::Edges { taken, .. } = layer {
+                out.extend_from_slice(taken);
+            }
             return !out.is_empty();
         }
         Build::detect().run(Dirty {
             moved: self,
-            at: (y, rm, sure, taken),
+            at: (y, rm, layer),
             out,
         })
     }
 
-    /// [`Self::dirty`] after its row test, in lane build `s`.
+    /// [`Self::dirty`] after its row test, in lane build `s`, for the edge
+    /// layer where `EDGES` (`is`, `taken`: [`Layer::Edges`]), else the base
+    /// layer (each built apart, so that the base layer's walk has no test of
+    /// edge flags).
     #[expect(
         clippy::inline_always,
         reason = "inlined into each build, so the AVX2 one compiles it for AVX2"
     )]
     #[inline(always)]
-    fn dirty_with<S: Simd>(
+    fn dirty_with<S: Simd, const EDGES: bool>(
         &self,
         s: S,
-        (y, rm, sure, taken): (usize, &RowMotion, bool, &[u32]),
+        (y, rm, is, taken): (usize, &RowMotion, &[bool], &[u32]),
         out: &mut Vec<u32>,
     ) -> bool {
         let n = rm.cells.len();
@@ -110,7 +127,7 @@ impl Moved {
         }
         let mut batch = Batch::default();
         let runs = self.spans.row(y);
-        let sure = if sure { self.spans.sure_row(y) } else { &[] };
+        let sure = if EDGES { &[] } else { self.spans.sure_row(y) };
         // The first run that ends after the pixel at hand (pixels ascend).
         let (mut r, mut sr) = (0, 0);
         for (i, &c) in rm.supers.iter().enumerate() {
@@ -128,9 +145,19 @@ impl Moved {
                 if !may_hold(runs, &mut r, rm.blocks[b] & self.cells, (x0, x1)) {
                     continue;
                 }
-                self.block(
+                // The block's pixels that hold a record: in the edge layer
+                // only its edges.
+                let held = if EDGES {
+                    (x0..x1).fold(0, |m, x| m | u32::from(is[x]) << (x - x0))
+                } else {
+                    u32::MAX
+                };
+                if held == 0 {
+                    continue;
+                }
+                self.block::<S, EDGES>(
                     s,
-                    (rm, x0..x1),
+                    (rm, x0..x1, held),
                     (runs, &mut r),
                     (sure, &mut sr),
                     (&mut batch, &mut hit),
@@ -142,18 +169,19 @@ impl Moved {
         !out.is_empty()
     }
 
-    /// The candidates among pixels `xs` of `rm` (a block), their segments
-    /// tested in `batch`, the pixels met noted in `hit`; `r`: the first of
-    /// `runs` that ends after `xs.start`, kept so for the next block.
+    /// The candidates among pixels `xs` of `rm` (a block; those of them whose
+    /// bit `k - xs.start` of `held` is set), their segments tested in
+    /// `batch`, the pixels met noted in `hit`; `r`: the first of `runs` that
+    /// ends after `xs.start`, kept so for the next block.
     #[expect(
         clippy::inline_always,
         reason = "inlined into each build, so the AVX2 one compiles it for AVX2"
     )]
     #[inline(always)]
-    fn block<S: Simd>(
+    fn block<S: Simd, const EDGES: bool>(
         &self,
         s: S,
-        (rm, xs): (&RowMotion, std::ops::Range<usize>),
+        (rm, xs, held): (&RowMotion, std::ops::Range<usize>, u32),
         (runs, r): (&[(u32, u32)], &mut usize),
         (sure, sr): (&[(u32, u32)], &mut usize),
         (batch, hit): (&mut Batch, &mut crate::bits::RowBits<'_>),
@@ -162,7 +190,10 @@ impl Moved {
         // Whether a pixel of the block met a moved object (hit bits): where
         // none did, a pixel in a run need not read its cells.
         let hits = rm.blocks[xs.start / BLOCK] & self.cells & HITS != 0;
-        for k in xs {
+        for k in xs.clone() {
+            if EDGES && held >> (k - xs.start) & 1 == 0 {
+                continue;
+            }
             // The segments of a pixel further on, on their way (every pixel
             // of the block: the candidates among them are not known yet).
             if !cells_only {
@@ -306,7 +337,7 @@ fn may_hold(runs: &[(u32, u32)], r: &mut usize, met: Cells, (x0, x1): (usize, us
 /// [`Moved::dirty`] after its row test, as a lane kernel.
 struct Dirty<'k> {
     moved: &'k Moved,
-    at: (usize, &'k RowMotion, bool, &'k [u32]),
+    at: (usize, &'k RowMotion, Layer<'k>),
     out: &'k mut Vec<u32>,
 }
 
@@ -318,13 +349,22 @@ impl Kernel for Dirty<'_> {
     type Output = bool;
     #[inline(always)]
     fn run<S: Simd>(self, s: S) -> bool {
-        self.moved.dirty_with(s, self.at, self.out)
+        let (y, rm, layer) = self.at;
+        match layer {
+            Layer::Base => self
+                .moved
+                .dirty_with::<S, false>(s, (y, rm, &[], &[]), self.out),
+            Layer::Edges { is, taken } => {
+                self.moved
+                    .dirty_with::<S, true>(s, (y, rm, is, taken), self.out)
+            }
+        }
     }
 }
 
 #[cfg(test)]
 mod tests {
-    use super::Moved;
+    use super::{Layer, Moved};
     use crate::motion::{Cells, Near, NearSet, RowMotion, Seg};
     use crate::scene::Shape;
     use glam::Vec3;
@@ -364,7 +404,7 @@ mod tests {
     /// The pixels of `rm` that `moved` takes.
     fn taken(moved: &Moved, rm: &RowMotion) -> Vec<u32> {
         let mut out = Vec::new();
-        moved.dirty(0, rm, (false, &[]), &mut out);
+        moved.dirty(0, rm, Layer::Base, &mut out);
         out
     }
 
