@@ -480,10 +480,7 @@ impl<'a> Prepared<'a> {
                 || t_max,
                 |i, _, _| {
                     let b = self.hit_object(i, ray).is_some_and(|(t, _)| t < t_max);
-                    if b {
-                        found = Some(i);
-                    }
-                    b
+                    noted(&mut found, i, b)
                 },
             );
             return found;
@@ -540,13 +537,7 @@ impl<'a> Prepared<'a> {
                     ray,
                     inv,
                     || t_max,
-                    |i, _, _| {
-                        let b = blocks(i);
-                        if b {
-                            found = Some(i);
-                        }
-                        b
-                    },
+                    |i, _, _| noted(&mut found, i, blocks(i)),
                 );
                 found
             }
@@ -558,11 +549,7 @@ impl<'a> Prepared<'a> {
                     || t_max,
                     |k| {
                         let (i, b) = self.bounded[k];
-                        let hit = b.hit(ray, inv, t_max) && blocks(i);
-                        if hit {
-                            found = Some(i);
-                        }
-                        hit
+                        noted(&mut found, i, b.hit(ray, inv, t_max) && blocks(i))
                     },
                 );
                 found
@@ -574,6 +561,15 @@ impl<'a> Prepared<'a> {
                 .map(|&(i, _)| i),
         }
     }
+}
+
+/// A blocker scan's answer for object `i`, `blocks`, noting `i` in `found`
+/// where it blocks (the scans stop at the first that does).
+fn noted(found: &mut Option<usize>, i: usize, blocks: bool) -> bool {
+    if blocks {
+        *found = Some(i);
+    }
+    blocks
 }
 
 #[cfg(test)]
