@@ -59,6 +59,9 @@ struct Reach {
     inv: Vec3,
     widen: f32,
     t_max: f32,
+    /// A box holding every point within `widen` of the segment, with room
+    /// for rounding ([`Self::bounds`]).
+    bounds: Aabb,
 }
 
 impl Reach {
@@ -72,12 +75,34 @@ impl Reach {
         };
         let reach = if t_max.is_finite() { dir.length() } else { 0.0 };
         let scale = centre.abs().max_element() + reach;
+        let widen = 0.5 * (from.max - from.min).length() + 1e-4 + 1e-4 * scale;
+        // The segment's far end: the light, or without end along each axis
+        // the light's direction runs along.
+        let end = if t_max.is_finite() {
+            centre + dir
+        } else {
+            Vec3::select(dir.cmpeq(Vec3::ZERO), centre, dir.signum() * f32::INFINITY)
+        };
+        // Rounding in `meets` is some 1e-7 of the scale; the pad is a
+        // thousand times that.
+        let pad = Vec3::splat(widen + 1e-4 + 1e-4 * scale);
         Some(Self {
             centre,
             inv: dir.recip(),
-            widen: 0.5 * (from.max - from.min).length() + 1e-4 + 1e-4 * scale,
+            widen,
             t_max,
+            bounds: Aabb {
+                min: centre.min(end) - pad,
+                max: centre.max(end) + pad,
+            },
         })
+    }
+
+    /// A box outside which no box [`Self::meets`]: one that misses it lies
+    /// farther than `widen` from every point of the segment, by far more
+    /// than the rounding of `meets`.
+    fn bounds(&self) -> Aabb {
+        self.bounds
     }
 
     /// Whether an object with box `b` can lie in the reach.
@@ -205,12 +230,21 @@ impl Casters {
     /// they are) are `moved` have moved since, the object not among them:
     /// none of its lists can hold one of those boxes, so each holds the same
     /// objects, with the same boxes.
+    ///
+    /// In a long row most objects' reaches pass far from the moved ones: the
+    /// box holding all of an object's reaches towards a light is tested
+    /// first, and only the moved boxes it meets are tested piece by piece.
     pub(crate) fn keep_for(shape: &Shape, lights: &[Light], moved: &[Aabb]) -> bool {
         let boxes = piece_boxes(shape);
+        let mut reaches = Vec::with_capacity(boxes.len());
+        let mut near = Vec::with_capacity(moved.len());
         lights.iter().all(|l| {
-            boxes.iter().all(|&b| {
-                Reach::new(b, l).is_none_or(|reach| !moved.iter().any(|m| reach.meets(m)))
-            })
+            reaches.clear();
+            reaches.extend(boxes.iter().filter_map(|&b| Reach::new(b, l)));
+            let all = reaches.iter().fold(Aabb::EMPTY, |h, r| h.union(r.bounds()));
+            near.clear();
+            near.extend(moved.iter().filter(|m| m.overlaps(&all)));
+            near.is_empty() || reaches.iter().all(|r| !near.iter().any(|m| r.meets(m)))
         })
     }
 
@@ -266,5 +300,119 @@ pub(crate) fn clear_of(g: &Geom, p: Vec3) -> bool {
         }
         Geom::Cylinder(ref c) => c.clear_of(p, MARGIN),
         Geom::Plane { .. } => true,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{Casters, Reach, piece_boxes};
+    use crate::geometry::{Aabb, bounds};
+    use crate::scene::{Light, Shape};
+    use glam::Vec3;
+
+    /// Whether a moved box meets one of the reaches of `shape`'s pieces
+    /// towards `lights`, each piece against each box: what
+    /// [`Casters::keep_for`] answers, worked out without its first test.
+    fn kept_piece_by_piece(shape: &Shape, lights: &[Light], moved: &[Aabb]) -> bool {
+        lights.iter().all(|l| {
+            piece_boxes(shape)
+                .into_iter()
+                .all(|b| Reach::new(b, l).is_none_or(|reach| !moved.iter().any(|m| reach.meets(m))))
+        })
+    }
+
+    #[test]
+    fn keeping_casters_answers_as_the_test_of_every_piece_against_every_moved_box() {
+        let color = Vec3::ONE;
+        // Point lights above the row and beside it, a light straight down
+        // (its direction has zero components: the reaches' slabs along those
+        // axes are unbounded) and a slanted one.
+        let lights = [
+            Light::Point {
+                position: Vec3::new(0.7, 0.6, 0.5),
+                color,
+            },
+            Light::Point {
+                position: Vec3::new(-2.5, 0.1, -0.3),
+                color,
+            },
+            Light::Directional {
+                direction: Vec3::NEG_Y,
+                color,
+            },
+            Light::Directional {
+                direction: Vec3::new(0.3, -1.0, 0.2).normalize(),
+                color,
+            },
+            Light::Ambient { color },
+        ];
+        // A row of balls, each on two slanted strings.
+        let mut shapes = Vec::new();
+        for k in 0..12 {
+            let x = -2.0 + 0.1 * k as f32;
+            let centre = Vec3::new(x, 0.05, 0.0);
+            shapes.push(Shape::Sphere {
+                centre,
+                radius: 0.02,
+            });
+            for z in [-0.08, 0.08] {
+                shapes.push(Shape::Cylinder {
+                    a: Vec3::new(x, 0.2, z),
+                    b: centre,
+                    radius: 0.0005,
+                });
+            }
+        }
+        let (mut kept, mut not) = (0, 0);
+        // A small moved box at each point of a grid over the row and above
+        // it (1.3 cm apart across, so that some lie within a reach's
+        // widening of its segment and some just beyond), and the row's
+        // first three balls moved together.
+        let small = |c: Vec3| {
+            bounds(&Shape::Sphere {
+                centre: c,
+                radius: 0.002,
+            })
+            .expect("a box")
+        };
+        let mut sets: Vec<Vec<Aabb>> = Vec::new();
+        for i in 0..100 {
+            for j in 0..5 {
+                for z in [-0.05, 0.0, 0.05] {
+                    let x = -2.2 + 0.013 * i as f32;
+                    sets.push(vec![small(Vec3::new(x, 0.08 * j as f32, z))]);
+                }
+            }
+        }
+        sets.push(
+            (0..3)
+                .flat_map(|j| {
+                    let c = Vec3::new(-2.0 + 0.1 * j as f32, 0.05, 0.0);
+                    [c, c + Vec3::new(0.03, 0.01, 0.0)]
+                })
+                .map(|centre| {
+                    bounds(&Shape::Sphere {
+                        centre,
+                        radius: 0.02,
+                    })
+                    .expect("a box")
+                })
+                .collect(),
+        );
+        for moved in &sets {
+            for shape in &shapes {
+                for ls in [&lights[..], &lights[0..1], &lights[2..3], &lights[3..4]] {
+                    let want = kept_piece_by_piece(shape, ls, moved);
+                    assert_eq!(Casters::keep_for(shape, ls, moved), want, "{shape:?}");
+                    if want {
+                        kept += 1;
+                    } else {
+                        not += 1;
+                    }
+                }
+            }
+        }
+        // Both answers come up often.
+        assert!(kept > 1_000 && not > 100, "kept {kept}, not {not}");
     }
 }

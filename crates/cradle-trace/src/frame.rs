@@ -86,9 +86,10 @@ impl<'a> Frame<'a> {
         track: bool,
         kept: Option<Kept>,
     ) -> Self {
+        // The hierarchy first: the shadow casters find theirs through it.
         let prepared = Prepared::new(scene)
-            .with_shadow_culling_kept(options.shadow_culling, kept)
-            .with_bvh(options.bvh);
+            .with_bvh(options.bvh)
+            .with_shadow_culling_kept(options.shadow_culling, kept);
         let bound = radiance_bound(scene);
         let camera = CameraRays::new(&scene.camera, scene.size.0, scene.size.1);
         Self {

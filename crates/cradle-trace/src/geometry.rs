@@ -195,6 +195,12 @@ impl Aabb {
         }
     }
 
+    /// Whether the two boxes share a point (faces touching count).
+    #[must_use]
+    pub fn overlaps(&self, o: &Self) -> bool {
+        self.min.cmple(o.max).all() && o.min.cmple(self.max).all()
+    }
+
     /// Its 8 corners: bit 0 of the index picks `max.x` over `min.x`, bit 1
     /// `max.y`, bit 2 `max.z`.
     #[must_use]

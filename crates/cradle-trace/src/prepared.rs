@@ -333,7 +333,8 @@ impl<'a> Prepared<'a> {
     }
 
     /// Turns shadow culling ([`Footprints`]) on or off (off: every shadow ray
-    /// tests every object, the reference).
+    /// tests every object, the reference). The casters are found through the
+    /// hierarchy where [`Self::with_bvh`] built it first.
     #[must_use]
     pub fn with_shadow_culling(self, on: bool) -> Self {
         self.with_shadow_culling_kept(on, None)
@@ -402,9 +403,18 @@ impl<'a> Prepared<'a> {
             _ => ((0..n).map(|_| None).collect(), Vec::new()),
         };
         // Beyond a few dozen objects, find each piece's casters through a
-        // hierarchy rather than by testing every object.
+        // hierarchy rather than by testing every object: the frame's own
+        // where it has one (over the same boxes).
         let boxes: Vec<Aabb> = self.bounded.iter().map(|&(_, b)| b).collect();
-        let bvh = (boxes.len() > 32).then(|| Bvh::new(&boxes));
+        let own;
+        let bvh = match &self.bvh {
+            _ if boxes.len() <= 32 => None,
+            Some(b) => Some(b),
+            None => {
+                own = Bvh::new(&boxes);
+                Some(&own)
+            }
+        };
         // (Object by object over the pool: each takes a list per light and
         // piece, and a frame waits for them before it traces.)
         scene
@@ -418,7 +428,7 @@ impl<'a> Prepared<'a> {
                 {
                     return Some(c);
                 }
-                let bvh = bvh.as_ref().map(|b| (b, &boxes[..]));
+                let bvh = bvh.map(|b| (b, &boxes[..]));
                 Casters::new((i, &o.shape), &scene.lights, &self.bounded, bvh)
             })
             .collect()
