@@ -12,7 +12,7 @@ use super::geometry::Aabb;
 use super::material::radiance_bound;
 use super::motion::{Cells, Motion, MotionGrid, NoRecord, Record, RowMotion, Seg};
 use super::packet::{LANES, LaneNotes, Packet};
-use super::prepared::{Kept, Prepared};
+use super::prepared::{Kept, PerPlane, Prepared};
 use super::reference::{self, Plain};
 use super::sampling::sample_offsets;
 use super::scene::Scene;
@@ -181,9 +181,11 @@ impl<'a> Frame<'a> {
         (mask, c)
     }
 
-    /// The shadow casters, taken out for the next frame ([`Kept`]).
-    pub(crate) fn take_casters(&mut self) -> Option<Vec<Option<Casters>>> {
-        self.prepared.take_casters()
+    /// The shadow casters and footprints, taken out for the next frame
+    /// ([`Kept`]).
+    pub(crate) fn take_culling(&mut self) -> Option<(Vec<Option<Casters>>, Option<PerPlane>)> {
+        let footprints = self.prepared.take_footprints();
+        Some((self.prepared.take_casters()?, footprints))
     }
 
     /// Adaptive anti-aliasing's edge threshold (a byte difference), if on.

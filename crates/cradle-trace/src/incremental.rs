@@ -11,7 +11,7 @@ use super::frame::{Frame, RenderOptions};
 use super::geometry::{Aabb, bounds};
 use super::motion::RowMotion;
 use super::motion::{Cells, HITS, MET, MotionGrid, Near, NearSet, moving_bits};
-use super::prepared::Kept;
+use super::prepared::{Kept, PerPlane};
 use super::render::image;
 use super::retrace::{Moved, Piece, Spans, retrace_row};
 use super::scene::{Light, Scene, Shape};
@@ -182,6 +182,15 @@ fn same_but_motion(a: &Scene, b: &Scene) -> bool {
         && *coarse == b.coarse
 }
 
+/// A frame's shadow casters and footprints, and the lights they were found
+/// for, kept for the next frame.
+#[derive(Debug)]
+struct Culling {
+    casters: Vec<Option<Casters>>,
+    footprints: Option<PerPlane>,
+    lights: Vec<Light>,
+}
+
 /// Renders frame after frame, re-tracing only what motion changed. Each pixel
 /// keeps the cells of the motion grid (the box every moving object stays in, cut
 /// 32 x 4 x 1, see `motion`) that its rays passed through. A frame re-traces only the pixels whose
@@ -208,9 +217,9 @@ pub struct Incremental {
     /// With adaptive anti-aliasing: the layers its frames keep (then `rows` is
     /// unused).
     layers: Option<Layers>,
-    /// The last frame's shadow casters and the lights they were found for:
-    /// the next frame keeps those that still hold ([`Kept`]).
-    casters: Option<(Vec<Option<Casters>>, Vec<Light>)>,
+    /// The last frame's shadow culling: the next frame keeps what still
+    /// holds ([`Kept`]).
+    culling: Option<Culling>,
 }
 
 /// The objects of `list` that moved from `before` (their shapes in the last
@@ -425,16 +434,24 @@ impl Incremental {
             self.full = true;
             self.shapes = scene.objects.iter().map(|o| o.shape).collect();
         }
-        self.casters = frame.take_casters().map(|c| (c, scene.lights.clone()));
+        self.culling = frame.take_culling().map(|(casters, footprints)| Culling {
+            casters,
+            footprints,
+            lights: scene.lights.clone(),
+        });
         &self.picture.as_ref().expect("rendered above").image
     }
 
     /// What the next frame, of `scene` with the objects of `list` moved since
-    /// the last one, may keep of the last frame's shadow casters: nothing
+    /// the last one, may keep of the last frame's shadow culling: nothing
     /// unless the change is one this renderer follows, the lights are the
     /// same and every moved object has a box.
     fn kept(&mut self, scene: &Scene, list: Option<&[usize]>) -> Option<Kept> {
-        let (casters, lights) = self.casters.take()?;
+        let Culling {
+            casters,
+            footprints,
+            lights,
+        } = self.culling.take()?;
         let list = list?;
         if lights != scene.lights {
             return None;
@@ -446,6 +463,7 @@ impl Incremental {
         }
         Some(Kept {
             casters,
+            footprints,
             moved: list.to_vec(),
             boxes,
         })
@@ -459,7 +477,7 @@ impl Incremental {
         self.retraced = w as usize * h as usize;
         self.full = true;
         self.shapes.clear();
-        self.casters = None;
+        self.culling = None;
         self.rows.clear();
         self.layers = None;
         let id = NEXT_ID.fetch_add(1, Ordering::Relaxed);

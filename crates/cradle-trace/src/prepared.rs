@@ -32,7 +32,7 @@ pub struct Prepared<'a> {
     plane_slot: Vec<Option<usize>>,
     /// Per plane, per light: which objects can shadow which part of it; built
     /// only when shadow culling is turned on.
-    footprints: Option<Vec<Vec<Option<Footprints>>>>,
+    footprints: Option<PerPlane>,
     /// Per object (`None` for planes): the objects that can block its shadow
     /// rays ([`Casters`]); built only when shadow culling is turned on.
     casters: Option<Vec<Option<Casters>>>,
@@ -47,6 +47,9 @@ pub struct Prepared<'a> {
     moving_bits: Vec<Cells>,
 }
 
+/// Per plane, per light: the footprints of the bounded objects.
+pub(crate) type PerPlane = Vec<Vec<Option<Footprints>>>;
+
 /// The shadow casters of the frame before, for the next one
 /// ([`Prepared::with_shadow_culling_kept`]): per object, with the objects that
 /// moved since and their boxes where they were and where they are. The scene
@@ -54,6 +57,8 @@ pub struct Prepared<'a> {
 #[derive(Debug)]
 pub(crate) struct Kept {
     pub(crate) casters: Vec<Option<Casters>>,
+    /// The footprints, where the frame before had them.
+    pub(crate) footprints: Option<PerPlane>,
     pub(crate) moved: Vec<usize>,
     pub(crate) boxes: Vec<Aabb>,
 }
@@ -350,8 +355,16 @@ impl<'a> Prepared<'a> {
             return self;
         }
         // The footprints and the casters are independent: built side by side.
+        let (kept, old) = match kept {
+            Some(mut k) => {
+                let old = k.footprints.take().map(|f| (f, k.moved.clone()));
+                (Some(k), old)
+            }
+            None => (None, None),
+        };
         let this = &self;
-        let (footprints, casters) = rayon::join(|| this.footprints_of(), || this.casters_of(kept));
+        let (footprints, casters) =
+            rayon::join(|| this.footprints_of(old), || this.casters_of(kept));
         (self.footprints, self.casters) = (Some(footprints), Some(casters));
         self
     }
@@ -361,21 +374,39 @@ impl<'a> Prepared<'a> {
         self.casters.take()
     }
 
-    /// Per plane, per light, the footprints of the bounded objects.
-    fn footprints_of(&self) -> Vec<Vec<Option<Footprints>>> {
+    /// The footprints, taken out for the next frame ([`Kept`]).
+    pub(crate) fn take_footprints(&mut self) -> Option<PerPlane> {
+        self.footprints.take()
+    }
+
+    /// Per plane, per light, the footprints of the bounded objects: those of
+    /// the frame before (`kept`, with the objects moved since) where the
+    /// moved objects' cells can be found again in them
+    /// ([`Footprints::with_moved`]), the others built afresh.
+    fn footprints_of(&self, kept: Option<(PerPlane, Vec<usize>)>) -> PerPlane {
         let scene = self.scene;
+        let pieces = |i: usize| piece_boxes(&scene.objects[i].shape);
+        let (mut old, moved) = match kept {
+            Some((f, moved)) if f.len() == self.planes.len() => (f, moved),
+            _ => (Vec::new(), Vec::new()),
+        };
+        old.resize_with(self.planes.len(), Vec::new);
         self.planes
             .iter()
-            .map(|&i| {
+            .zip(old)
+            .map(|(&i, old)| {
                 let Shape::Plane { point, normal } = scene.objects[i].shape else {
                     unreachable!("only planes are unbounded")
                 };
+                let mut old = old.into_iter();
                 scene
                     .lights
                     .iter()
                     .map(|l| {
-                        let pieces = |i: usize| piece_boxes(&scene.objects[i].shape);
-                        Footprints::new(point, normal, l, &self.bounded, pieces)
+                        old.next()
+                            .flatten()
+                            .and_then(|f| f.with_moved(&moved, &self.bounded, pieces))
+                            .or_else(|| Footprints::new(point, normal, l, &self.bounded, pieces))
                     })
                     .collect()
             })
@@ -392,6 +423,7 @@ impl<'a> Prepared<'a> {
                 mut casters,
                 moved,
                 boxes,
+                ..
             }) if casters.len() == n => {
                 for &i in &moved {
                     if let Some(c) = casters.get_mut(i) {

@@ -96,6 +96,20 @@ pub struct Footprints {
     /// Objects reaching up to the light's height or beyond: they can shadow any
     /// point, so every query tests them.
     always: Vec<usize>,
+    /// The binned objects in query order, each with the rectangle holding
+    /// its pieces' and their cells, and the rectangle holding them all (the
+    /// grid's bounds before padding): what [`Self::with_moved`] starts from.
+    placed: Vec<Placed>,
+    bounds: (Vec2, Vec2),
+}
+
+/// An object in the grid: its index, the rectangle holding its pieces'
+/// rectangles, and the cells each of those reaches (first and last).
+#[derive(Debug, Clone)]
+struct Placed {
+    object: usize,
+    rect: (Vec2, Vec2),
+    spans: Vec<(Cell2, Cell2)>,
 }
 
 impl Footprints {
@@ -143,17 +157,17 @@ impl Footprints {
             starts: Vec::new(),
             items: Vec::new(),
             always: Vec::new(),
+            placed: Vec::new(),
+            bounds: (Vec2::ZERO, Vec2::ZERO),
         };
         // Per object, its pieces' rectangles (or its box's, where a piece's
-        // corner does not project).
+        // corner does not project; where that does not, it is always tested).
         let mut rects: Vec<(usize, Vec<(Vec2, Vec2)>)> = Vec::new();
         for &(i, b) in bounded {
-            let Some(whole) = fp.rect(&b) else {
-                fp.always.push(i);
-                continue;
-            };
-            let parts: Option<Vec<_>> = pieces(i).iter().map(|p| fp.rect(p)).collect();
-            rects.push((i, parts.filter(|p| !p.is_empty()).unwrap_or(vec![whole])));
+            match fp.rects(b, &pieces(i)) {
+                Some(r) => rects.push((i, r)),
+                None => fp.always.push(i),
+            }
         }
         if rects.is_empty() {
             return Some(fp);
@@ -168,49 +182,204 @@ impl Footprints {
         fp.min = lo;
         fp.n = (per_axis, per_axis);
         fp.inv_cell = Vec2::splat(per_axis as f32) / size;
+        fp.bounds = (lo, hi);
+        fp.placed = rects
+            .into_iter()
+            .map(|(object, r)| fp.placed(object, &r))
+            .collect();
         // Count each cell's objects, turn the counts into starts, then place
-        // the objects (each cell keeps `rects`' order, the query order; an
+        // the objects (each cell keeps `placed`'s order, the query order; an
         // object whose pieces reach a cell twice is placed there once).
         let cells = per_axis * per_axis;
-        let spans: Vec<(usize, Vec<(Cell2, Cell2)>)> = rects
-            .iter()
-            .map(|(i, r)| {
-                (
-                    *i,
-                    r.iter()
-                        .map(|&(a, b)| (fp.cell_of(a), fp.cell_of(b)))
-                        .collect(),
-                )
-            })
-            .collect();
-        let each_cell = |visit: &mut dyn FnMut(usize, usize)| {
-            let mut last = vec![usize::MAX; cells];
-            for (n, (i, parts)) in spans.iter().enumerate() {
-                for &((x0, y0), (x1, y1)) in parts {
-                    for y in y0..=y1 {
-                        for x in x0..=x1 {
-                            let k = y * per_axis + x;
-                            if last[k] != n {
-                                last[k] = n;
-                                visit(k, *i);
-                            }
-                        }
-                    }
-                }
-            }
-        };
+        let mut last = vec![u32::MAX; cells];
         let mut fill = vec![0u32; cells + 1];
-        each_cell(&mut |k, _| fill[k + 1] += 1);
+        for (n, p) in fp.placed.iter().enumerate() {
+            fp.each_cell(&p.spans, (&mut last, n as u32), |k| fill[k + 1] += 1);
+        }
         for k in 0..cells {
             fill[k + 1] += fill[k];
         }
         fp.items = vec![0; fill[cells] as usize];
         fp.starts.clone_from(&fill);
-        each_cell(&mut |k, i| {
-            fp.items[fill[k] as usize] = i;
-            fill[k] += 1;
-        });
+        last.fill(u32::MAX);
+        for (n, p) in fp.placed.iter().enumerate() {
+            let items = &mut fp.items;
+            let object = p.object;
+            Self::cells_once(fp.n.0, &p.spans, (&mut last, n as u32), |k| {
+                items[fill[k] as usize] = object;
+                fill[k] += 1;
+            });
+        }
         Some(fp)
+    }
+
+    /// These footprints after the objects `moved` took the boxes `bounded`
+    /// gives them now (every other object as before): the moved objects'
+    /// cells found again, the others' kept. Each cell then lists the objects
+    /// [`Self::new`] would list afresh, those that stayed in their order
+    /// before and those that moved after them, in the order of `moved`
+    /// (the query order may have changed; a shadow ray's answer does not
+    /// depend on it). `None` where that asks for more: the grid's bounds
+    /// changed, the objects differ, or a moved object is not binned before or
+    /// after.
+    pub(crate) fn with_moved(
+        mut self,
+        moved: &[usize],
+        bounded: &[(usize, Aabb)],
+        pieces: impl Fn(usize) -> Vec<Aabb>,
+    ) -> Option<Self> {
+        if self.placed.is_empty() || self.placed.len() + self.always.len() != bounded.len() {
+            return None;
+        }
+        // Each object's place in `placed` (`u32::MAX`: always tested), and
+        // its box now.
+        let top = bounded.iter().map(|&(i, _)| i + 1).max().unwrap_or(0);
+        let mut at = vec![u32::MAX; top];
+        for (n, p) in self.placed.iter().enumerate() {
+            *at.get_mut(p.object)? = n as u32;
+        }
+        let mut boxes = vec![None; top];
+        for &(i, b) in bounded {
+            boxes[i] = Some(b);
+        }
+        if self.placed.iter().any(|p| boxes[p.object].is_none())
+            || self
+                .always
+                .iter()
+                .any(|&i| boxes.get(i).is_none_or(Option::is_none))
+        {
+            return None;
+        }
+        // The moved objects' rectangles; the grid's bounds must stay.
+        let mut is_moved = vec![false; top];
+        let mut news = Vec::with_capacity(moved.len());
+        for &i in moved {
+            let n = *at.get(i)?;
+            if n == u32::MAX {
+                return None;
+            }
+            if !std::mem::replace(&mut is_moved[i], true) {
+                news.push((n, self.rects((*boxes.get(i)?)?, &pieces(i))?));
+            }
+        }
+        let mut rect: Vec<(Vec2, Vec2)> = self.placed.iter().map(|p| p.rect).collect();
+        for (n, rects) in &news {
+            rect[*n as usize] = hull(rects);
+        }
+        if hull(&rect) != self.bounds {
+            return None;
+        }
+        // The cells the moved objects reach now, bucketed by cell; the cells
+        // they reached before or reach now change.
+        let cells = self.n.0 * self.n.1;
+        let mut last = vec![u32::MAX; cells];
+        let mut changed = vec![false; cells];
+        let mut adds = Vec::new();
+        for (n, rects) in news {
+            let was = &self.placed[n as usize].spans;
+            Self::cells_once(self.n.0, was, (&mut last, 2 * n), |k| changed[k] = true);
+            let p = self.placed(self.placed[n as usize].object, &rects);
+            self.each_cell(&p.spans, (&mut last, 2 * n + 1), |k| {
+                changed[k] = true;
+                adds.push((k, p.object));
+            });
+            self.placed[n as usize] = p;
+        }
+        let mut from = vec![0u32; cells + 1];
+        for &(k, _) in &adds {
+            from[k + 1] += 1;
+        }
+        for k in 0..cells {
+            from[k + 1] += from[k];
+        }
+        let mut added = vec![0; adds.len()];
+        for (k, i) in adds {
+            added[from[k] as usize] = i;
+            from[k] += 1;
+        }
+        // Each cell's list again: its objects that did not move, then those
+        // that moved there; a run of cells that did not change is copied
+        // whole.
+        let mut starts = Vec::with_capacity(cells + 1);
+        let mut items = Vec::with_capacity(self.items.len() + added.len());
+        starts.push(0);
+        let mut k = 0;
+        while k < cells {
+            if changed[k] {
+                let a = if k == 0 { 0 } else { from[k - 1] as usize };
+                items.extend(self.cell(k).iter().copied().filter(|&i| !is_moved[i]));
+                items.extend_from_slice(&added[a..from[k] as usize]);
+                starts.push(items.len() as u32);
+                k += 1;
+                continue;
+            }
+            let run = k + changed[k..].iter().position(|&c| c).unwrap_or(cells - k);
+            let (s0, s1) = (self.starts[k] as usize, self.starts[run] as usize);
+            let shift = items.len() as i64 - s0 as i64;
+            items.extend_from_slice(&self.items[s0..s1]);
+            starts.extend(
+                self.starts[k + 1..=run]
+                    .iter()
+                    .map(|&v| (i64::from(v) + shift) as u32),
+            );
+            k = run;
+        }
+        (self.starts, self.items) = (starts, items);
+        Some(self)
+    }
+
+    /// The rectangles of an object with box `b` and pieces `pieces` (empty:
+    /// its box whole): its pieces', or its box's where a piece's corner does
+    /// not project; `None` where its box's does not (it can shadow any
+    /// point).
+    fn rects(&self, b: Aabb, pieces: &[Aabb]) -> Option<Vec<(Vec2, Vec2)>> {
+        let whole = self.rect(&b)?;
+        let parts: Option<Vec<_>> = pieces.iter().map(|p| self.rect(p)).collect();
+        Some(parts.filter(|p| !p.is_empty()).unwrap_or(vec![whole]))
+    }
+
+    /// Object `object` with rectangles `rects` placed in the grid.
+    fn placed(&self, object: usize, rects: &[(Vec2, Vec2)]) -> Placed {
+        Placed {
+            object,
+            rect: hull(rects),
+            spans: rects
+                .iter()
+                .map(|&(a, b)| (self.cell_of(a), self.cell_of(b)))
+                .collect(),
+        }
+    }
+
+    /// Calls `visit` with each cell (row-major, rows of `row`) that `spans`
+    /// reach, once: `last` holds per cell the stamp of the last visit, and
+    /// this one's is `stamp`.
+    fn cells_once(
+        row: usize,
+        spans: &[(Cell2, Cell2)],
+        (last, stamp): (&mut [u32], u32),
+        mut visit: impl FnMut(usize),
+    ) {
+        for &((x0, y0), (x1, y1)) in spans {
+            for y in y0..=y1 {
+                for x in x0..=x1 {
+                    let k = y * row + x;
+                    if last[k] != stamp {
+                        last[k] = stamp;
+                        visit(k);
+                    }
+                }
+            }
+        }
+    }
+
+    /// [`Self::cells_once`] in this grid.
+    fn each_cell(
+        &self,
+        spans: &[(Cell2, Cell2)],
+        last: (&mut [u32], u32),
+        visit: impl FnMut(usize),
+    ) {
+        Self::cells_once(self.n.0, spans, last, visit);
     }
 
     /// Plane coordinates of a point on (or projected onto) the plane.
@@ -336,6 +505,14 @@ impl Footprints {
             Lookup::Cell(k) => Some((self.cell(k), &self.always)),
         }
     }
+}
+
+/// The rectangle holding `rects`.
+fn hull(rects: &[(Vec2, Vec2)]) -> (Vec2, Vec2) {
+    rects.iter().fold(
+        (Vec2::splat(f32::INFINITY), Vec2::splat(f32::NEG_INFINITY)),
+        |(lo, hi), &(a, b)| (lo.min(a), hi.max(b)),
+    )
 }
 
 #[cfg(test)]

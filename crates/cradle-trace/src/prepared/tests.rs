@@ -164,6 +164,7 @@ fn kept_casters_hold_what_fresh_ones_hold() {
             .with_shadow_culling(true)
             .take_casters()
             .expect("shadow culling is on"),
+        footprints: None,
         moved: vec![1],
         boxes: moved.to_vec(),
     };
