@@ -198,10 +198,11 @@ pub fn resolve(
             out.hits.push((a, -vn));
         }
         out.resting[a] = Some(!counted);
-        for i in balls {
+        for i in balls.clone() {
             out.changed[i] = true;
             out.kicked[i] |= counted;
         }
+        balls
     };
     // A root at round-off level can belong to a pair that is not approaching: no
     // impulse then (one would pull the balls together), only resting contact.
@@ -220,21 +221,138 @@ pub fn resolve(
     // geometric tail of restitution < 1.
     let max_passes = 8 * n * n + 16;
     let touch_h = r.touch * (4.0 * p.radius + r.touch);
+    // Each pair's closing speed where it touches (`None`: apart). An impact
+    // changes only the balls it returns, so only the pairs beside them are
+    // worked out again: the same values, without a chain's k (n - k) passes
+    // each working out every pair (a 200-ball row's impact took 20 ms so).
+    let speed = |a: usize, theta: &[f64], omega: &[f64]| {
+        if gap_fn(p, theta[a], theta[a + 1]) > touch_h {
+            None
+        } else {
+            Some(closing_speed(
+                p,
+                (theta[a], omega[a]),
+                (theta[a + 1], omega[a + 1]),
+            ))
+        }
+    };
+    let pairs = n.saturating_sub(1);
+    let mut speeds: Vec<Option<f64>> = (0..pairs).map(|a| speed(a, theta, omega)).collect();
     for _ in 0..max_passes {
         let mut worst: Option<(usize, f64)> = None;
-        for a in 0..n - 1 {
-            if gap_fn(p, theta[a], theta[a + 1]) > touch_h {
-                continue;
-            }
-            let vn = closing_speed(p, (theta[a], omega[a]), (theta[a + 1], omega[a + 1]));
-            if vn < -r.round_off() && worst.is_none_or(|(_, w)| vn < w) {
+        for (a, &vn) in speeds.iter().enumerate() {
+            if let Some(vn) = vn
+                && vn < -r.round_off()
+                && worst.is_none_or(|(_, w)| vn < w)
+            {
                 worst = Some((a, vn));
             }
         }
         let Some((a, _)) = worst else {
             return out;
         };
-        hit(a, theta, omega, &mut out);
+        let balls = hit(a, theta, omega, &mut out);
+        for j in balls.start().saturating_sub(1)..=(*balls.end()).min(pairs - 1) {
+            speeds[j] = speed(j, theta, omega);
+        }
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{Outcome, Resolution, closing_speed, impact, resolve};
+    use crate::params::{CradleParams, gap_fn};
+
+    /// `resolve` as its rule says, every touching pair's closing speed worked
+    /// out afresh on every pass: what the kept speeds must reproduce.
+    fn resolve_afresh(
+        p: &CradleParams,
+        r: &Resolution,
+        theta: &mut [f64],
+        omega: &mut [f64],
+        first: usize,
+    ) -> (Vec<usize>, u64) {
+        let n = theta.len();
+        let touch_h = r.touch * (4.0 * p.radius + r.touch);
+        let mut order = Vec::new();
+        let mut impacts = 0;
+        let mut a = Some(first);
+        // The first pair, then at most as many passes as `resolve` makes.
+        for _ in 0..=8 * n * n + 16 {
+            let Some(pair) = a else {
+                break;
+            };
+            let vn = closing_speed(
+                p,
+                (theta[pair], omega[pair]),
+                (theta[pair + 1], omega[pair + 1]),
+            );
+            if pair != first || !order.is_empty() || vn < -r.round_off() {
+                impacts += u64::from(impact(p, r, theta, omega, pair).1);
+                order.push(pair);
+            }
+            a = None;
+            let mut worst = f64::INFINITY;
+            for k in 0..n - 1 {
+                if gap_fn(p, theta[k], theta[k + 1]) > touch_h {
+                    continue;
+                }
+                let vn = closing_speed(p, (theta[k], omega[k]), (theta[k + 1], omega[k + 1]));
+                if vn < -r.round_off() && vn < worst {
+                    (a, worst) = (Some(k), vn);
+                }
+            }
+        }
+        (order, impacts)
+    }
+
+    #[test]
+    fn a_strike_through_a_touching_row_resolves_as_working_out_every_pair_each_pass() {
+        for (n, k, e) in [
+            (200, 20, 1.0),
+            (40, 7, 0.93),
+            (25, 5, 0.5),
+            (12, 3, 0.0),
+            (5, 2, 1.0),
+        ] {
+            let p = CradleParams {
+                balls: n,
+                radius: 0.02,
+                mass: 0.26,
+                length: 0.16,
+                gap: 0.0,
+                gravity: 9.81,
+                restitution: e,
+                hertz: None,
+                dissipation: 0.0,
+                drag: 0.0,
+            };
+            let r = Resolution {
+                restitution: e,
+                rest_speed: 1e-9,
+                touch: 2e-11,
+            };
+            // The k strikers at the bottom, moving right at 1 rad/s (their
+            // angular speeds a hair apart, as a swing leaves them); the row
+            // at rest, all touching.
+            let mut theta = vec![0.0; n];
+            let mut omega: Vec<f64> = (0..n)
+                .map(|i| if i < k { 1.0 + 1e-12 * i as f64 } else { 0.0 })
+                .collect();
+            let (mut th, mut om) = (theta.clone(), omega.clone());
+            let out: Outcome = resolve(&p, &r, &mut theta, &mut omega, k - 1);
+            let (order, impacts) = resolve_afresh(&p, &r, &mut th, &mut om, k - 1);
+            // The same state to the bit, and the same impacts in the same order.
+            assert_eq!((theta, omega), (th, om), "{n} balls, {k} lifted, e = {e}");
+            assert_eq!(out.impacts, impacts, "{n} balls, {k} lifted, e = {e}");
+            let hits: Vec<usize> = out.hits.iter().map(|&(a, _)| a).collect();
+            let counted: Vec<usize> = order.into_iter().filter(|a| hits.contains(a)).collect();
+            assert!(hits.iter().all(|a| counted.contains(a)));
+            // An elastic strike of k balls passes on through k (n - k) impacts.
+            if e == 1.0 {
+                assert_eq!(out.impacts, (k * (n - k)) as u64, "{n} balls, {k} lifted");
+            }
+        }
+    }
 }
