@@ -252,8 +252,9 @@ pub fn resolve(
             return out;
         };
         let balls = hit(a, theta, omega, &mut out);
-        for j in balls.start().saturating_sub(1)..=(*balls.end()).min(pairs - 1) {
-            speeds[j] = speed(j, theta, omega);
+        let (lo, hi) = (balls.start().saturating_sub(1), (*balls.end()).min(pairs - 1));
+        for (j, s) in (lo..=hi).zip(&mut speeds[lo..=hi]) {
+            *s = speed(j, theta, omega);
         }
     }
     out
