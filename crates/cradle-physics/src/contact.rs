@@ -252,7 +252,10 @@ pub fn resolve(
             return out;
         };
         let balls = hit(a, theta, omega, &mut out);
-        let (lo, hi) = (balls.start().saturating_sub(1), (*balls.end()).min(pairs - 1));
+        let (lo, hi) = (
+            balls.start().saturating_sub(1),
+            (*balls.end()).min(pairs - 1),
+        );
         for (j, s) in (lo..=hi).zip(&mut speeds[lo..=hi]) {
             *s = speed(j, theta, omega);
         }
