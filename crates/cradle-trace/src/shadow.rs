@@ -96,9 +96,10 @@ pub struct Footprints {
     /// Objects reaching up to the light's height or beyond: they can shadow any
     /// point, so every query tests them.
     always: Vec<usize>,
-    /// The binned objects in query order, each with the rectangle holding
-    /// its pieces' and their cells, and the rectangle holding them all (the
-    /// grid's bounds before padding): what [`Self::with_moved`] starts from.
+    /// The binned objects (in the query order of the grid's first build),
+    /// each with the rectangle holding its pieces' and their cells, and the
+    /// rectangle holding them all (the grid's bounds): what
+    /// [`Self::with_moved`] starts from.
     placed: Vec<Placed>,
     bounds: (Vec2, Vec2),
 }
