@@ -223,8 +223,8 @@ pub fn resolve(
     let touch_h = r.touch * (4.0 * p.radius + r.touch);
     // Each pair's closing speed where it touches (`None`: apart). An impact
     // changes only the balls it returns, so only the pairs beside them are
-    // worked out again: the same values, without a chain's k (n - k) passes
-    // each working out every pair (a 200-ball row's impact took 20 ms so).
+    // worked out again: the same values, without each of a chain's k (n - k)
+    // passes working out every pair (some 20 ms for a 200-ball row's impact).
     let speed = |a: usize, theta: &[f64], omega: &[f64]| {
         if gap_fn(p, theta[a], theta[a + 1]) > touch_h {
             None
