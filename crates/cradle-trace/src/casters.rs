@@ -59,8 +59,9 @@ struct Reach {
     inv: Vec3,
     widen: f32,
     t_max: f32,
-    /// A box holding every point within `widen` of the segment, with room
-    /// for rounding ([`Self::bounds`]).
+    /// A box outside which no box [`Self::meets`]: it holds every point
+    /// within `widen` of the segment, padded far beyond the rounding of
+    /// `meets`.
     bounds: Aabb,
 }
 
@@ -96,13 +97,6 @@ impl Reach {
                 max: centre.max(end) + pad,
             },
         })
-    }
-
-    /// A box outside which no box [`Self::meets`]: one that misses it lies
-    /// farther than `widen` from every point of the segment, by far more
-    /// than the rounding of `meets`.
-    fn bounds(&self) -> Aabb {
-        self.bounds
     }
 
     /// Whether an object with box `b` can lie in the reach.
@@ -241,7 +235,7 @@ impl Casters {
         lights.iter().all(|l| {
             reaches.clear();
             reaches.extend(boxes.iter().filter_map(|&b| Reach::new(b, l)));
-            let all = reaches.iter().fold(Aabb::EMPTY, |h, r| h.union(r.bounds()));
+            let all = reaches.iter().fold(Aabb::EMPTY, |h, r| h.union(r.bounds));
             near.clear();
             near.extend(moved.iter().filter(|m| m.overlaps(&all)));
             near.is_empty() || reaches.iter().all(|r| !near.iter().any(|m| r.meets(m)))

@@ -173,10 +173,7 @@ impl Footprints {
         if rects.is_empty() {
             return Some(fp);
         }
-        let (lo, hi) = rects.iter().flat_map(|(_, r)| r).fold(
-            (Vec2::splat(f32::INFINITY), Vec2::splat(f32::NEG_INFINITY)),
-            |(lo, hi), (a, b)| (lo.min(*a), hi.max(*b)),
-        );
+        let (lo, hi) = hull(rects.iter().flat_map(|(_, r)| r));
         // About four cells per object along each axis, at most 256.
         let per_axis = ((rects.len() as f32).sqrt() * 8.0).clamp(8.0, 256.0) as usize;
         let size = (hi - lo).max(Vec2::splat(1e-6));
@@ -195,7 +192,9 @@ impl Footprints {
         let mut last = vec![u32::MAX; cells];
         let mut fill = vec![0u32; cells + 1];
         for (n, p) in fp.placed.iter().enumerate() {
-            fp.each_cell(&p.spans, (&mut last, n as u32), |k| fill[k + 1] += 1);
+            Self::cells_once(fp.n.0, &p.spans, (&mut last, n as u32), |k| {
+                fill[k + 1] += 1;
+            });
         }
         for k in 0..cells {
             fill[k + 1] += fill[k];
@@ -260,12 +259,13 @@ impl Footprints {
                 return None;
             }
             if !std::mem::replace(&mut is_moved[i], true) {
-                news.push((n, self.rects((*boxes.get(i)?)?, &pieces(i))?));
+                let rects = self.rects((*boxes.get(i)?)?, &pieces(i))?;
+                news.push((n, self.placed(i, &rects)));
             }
         }
         let mut rect: Vec<(Vec2, Vec2)> = self.placed.iter().map(|p| p.rect).collect();
-        for (n, rects) in &news {
-            rect[*n as usize] = hull(rects);
+        for (n, p) in &news {
+            rect[*n as usize] = p.rect;
         }
         if hull(&rect) != self.bounds {
             return None;
@@ -276,11 +276,10 @@ impl Footprints {
         let mut last = vec![u32::MAX; cells];
         let mut changed = vec![false; cells];
         let mut adds = Vec::new();
-        for (n, rects) in news {
+        for (n, p) in news {
             let was = &self.placed[n as usize].spans;
             Self::cells_once(self.n.0, was, (&mut last, 2 * n), |k| changed[k] = true);
-            let p = self.placed(self.placed[n as usize].object, &rects);
-            self.each_cell(&p.spans, (&mut last, 2 * n + 1), |k| {
+            Self::cells_once(self.n.0, &p.spans, (&mut last, 2 * n + 1), |k| {
                 changed[k] = true;
                 adds.push((k, p.object));
             });
@@ -371,16 +370,6 @@ impl Footprints {
                 }
             }
         }
-    }
-
-    /// [`Self::cells_once`] in this grid.
-    fn each_cell(
-        &self,
-        spans: &[(Cell2, Cell2)],
-        last: (&mut [u32], u32),
-        visit: impl FnMut(usize),
-    ) {
-        Self::cells_once(self.n.0, spans, last, visit);
     }
 
     /// Plane coordinates of a point on (or projected onto) the plane.
@@ -509,8 +498,8 @@ impl Footprints {
 }
 
 /// The rectangle holding `rects`.
-fn hull(rects: &[(Vec2, Vec2)]) -> (Vec2, Vec2) {
-    rects.iter().fold(
+fn hull<'a>(rects: impl IntoIterator<Item = &'a (Vec2, Vec2)>) -> (Vec2, Vec2) {
+    rects.into_iter().fold(
         (Vec2::splat(f32::INFINITY), Vec2::splat(f32::NEG_INFINITY)),
         |(lo, hi), &(a, b)| (lo.min(a), hi.max(b)),
     )
