@@ -242,6 +242,55 @@ impl Casters {
         })
     }
 
+    /// The casters of object `me` with `shape` for `lights` (these, found
+    /// when the objects `moved` flags were elsewhere; `me` not among them),
+    /// now that those objects lie in the boxes `now` (object and box, in
+    /// query order). Each list keeps its objects that did not move, in their
+    /// order, and gains after them the moved ones whose box meets its reach
+    /// now: the objects a fresh list holds, with the same boxes, the moved
+    /// ones last. A shadow test's yes or no does not depend on the order;
+    /// which blocker it names first may.
+    ///
+    /// As in [`Self::keep_for`], the moved boxes are tested against the box
+    /// holding all of the object's reaches towards a light first.
+    pub(crate) fn patched(
+        &self,
+        (me, shape): (usize, &Shape),
+        lights: &[Light],
+        moved: &[bool],
+        now: &[(usize, Aabb)],
+    ) -> Self {
+        let boxes = piece_boxes(shape);
+        let mut chunks = Vec::with_capacity(self.chunks.len());
+        let mut ranges = Vec::with_capacity(self.ranges.len());
+        let (mut list, mut near) = (Vec::new(), Vec::new());
+        for (li, l) in lights.iter().enumerate() {
+            let reaches: Vec<Option<Reach>> = boxes.iter().map(|&b| Reach::new(b, l)).collect();
+            let all = (reaches.iter().flatten()).fold(Aabb::EMPTY, |h, r| h.union(r.bounds));
+            near.clear();
+            near.extend(now.iter().filter(|(_, b)| b.overlaps(&all)));
+            for (piece, reach) in reaches.iter().enumerate() {
+                list.clear();
+                if let Some(reach) = reach {
+                    let [from, to, _] = self.ranges[li * self.pieces + piece];
+                    let old = WideList::of(&self.chunks, from as usize..to as usize);
+                    list.extend(old.entries().filter(|&(i, _)| !moved[i]));
+                    list.extend(near.iter().filter(|(_, b)| reach.meets(b)));
+                }
+                let all = chunks.len() as u32;
+                push_chunks(&mut chunks, list.iter().copied());
+                let others = chunks.len() as u32;
+                push_chunks(&mut chunks, list.iter().copied().filter(|&(i, _)| i != me));
+                ranges.push([all, others, chunks.len() as u32]);
+            }
+        }
+        Self {
+            chunks,
+            ranges,
+            ..*self
+        }
+    }
+
     /// The casters towards light `light` of a shadow ray starting at `at`, from
     /// a point met from `outside` (then without the object itself).
     pub(crate) fn at(&self, light: usize, at: Vec3, outside: bool) -> Option<WideList<'_>> {
@@ -313,6 +362,104 @@ mod tests {
                 .into_iter()
                 .all(|b| Reach::new(b, l).is_none_or(|reach| !moved.iter().any(|m| reach.meets(m))))
         })
+    }
+
+    /// A list's place (light, piece, outside) and its objects with their
+    /// boxes, in order.
+    type List = ((usize, usize, bool), Vec<(usize, Aabb)>);
+
+    /// Each list of `c`.
+    fn lists(c: &Casters, lights: usize) -> Vec<List> {
+        let mut out = Vec::new();
+        for l in 0..lights {
+            for piece in 0..c.pieces {
+                for outside in [false, true] {
+                    let list = c.list(l, piece, outside).expect("a light");
+                    out.push(((l, piece, outside), list.entries().collect()));
+                }
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn patched_casters_hold_what_fresh_ones_hold_with_the_moved_objects_last() {
+        let color = Vec3::ONE;
+        let lights = [
+            Light::Point {
+                position: Vec3::new(0.3, 0.6, 0.5),
+                color,
+            },
+            Light::Directional {
+                direction: Vec3::new(-0.4, -1.0, 0.1).normalize(),
+                color,
+            },
+            Light::Ambient { color },
+        ];
+        // Five balls touching in a row, each on two slanted strings.
+        let row = |swing: f32| {
+            let mut shapes = Vec::new();
+            for k in 0..5 {
+                let x = -0.08 + 0.04 * k as f32;
+                // The first pendulum swung out by `swing` radians.
+                let a = if k == 0 { swing } else { 0.0 };
+                let centre = Vec3::new(x - 0.16 * a.sin(), 0.2 - 0.16 * a.cos(), 0.0);
+                shapes.push(Shape::Sphere {
+                    centre,
+                    radius: 0.02,
+                });
+                for z in [-0.08, 0.08] {
+                    shapes.push(Shape::Cylinder {
+                        a: Vec3::new(x, 0.2, z),
+                        b: centre,
+                        radius: 0.0005,
+                    });
+                }
+            }
+            shapes
+        };
+        let bounded = |shapes: &[Shape]| -> Vec<(usize, Aabb)> {
+            (shapes.iter().enumerate())
+                .map(|(i, s)| (i, bounds(s).expect("a box")))
+                .collect()
+        };
+        let fresh = |shapes: &[Shape]| -> Vec<Casters> {
+            let b = bounded(shapes);
+            (shapes.iter().enumerate())
+                .map(|(i, s)| Casters::new((i, s), &lights, &b, None).expect("bounded"))
+                .collect()
+        };
+        // Swung out, then back through the row's place (where it blocks its
+        // neighbour's rays), then out again.
+        let mut changed = 0;
+        for (from, to) in [(0.0, 0.5), (0.5, 0.0), (0.5, 0.4), (0.0, -0.3)] {
+            let (before, after) = (row(from), row(to));
+            let moved: Vec<bool> = (0..before.len()).map(|i| i < 3).collect();
+            let now: Vec<(usize, Aabb)> = (bounded(&after).into_iter())
+                .filter(|&(i, _)| moved[i])
+                .collect();
+            let (old, new) = (fresh(&before), fresh(&after));
+            for i in 3..before.len() {
+                let patched = old[i].patched((i, &after[i]), &lights, &moved, &now);
+                let (got, want) = (lists(&patched, 2), lists(&new[i], 2));
+                if lists(&old[i], 2) != want {
+                    changed += 1;
+                }
+                for ((at, mut got), (_, mut want)) in got.into_iter().zip(want) {
+                    // The moved objects come after the others.
+                    let first = got.iter().position(|&(k, _)| moved[k]);
+                    if let Some(f) = first {
+                        assert!(got[f..].iter().all(|&(k, _)| moved[k]), "{i} {at:?}");
+                    }
+                    let key = |e: &(usize, Aabb)| e.0;
+                    got.sort_by_key(key);
+                    want.sort_by_key(key);
+                    assert_eq!(got, want, "object {i}, {at:?}, {from} -> {to}");
+                }
+            }
+        }
+        // Some lists did change: the moved pendulum enters and leaves them.
+        assert!(changed > 0);
     }
 
     #[test]

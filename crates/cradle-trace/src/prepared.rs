@@ -414,26 +414,33 @@ impl<'a> Prepared<'a> {
     }
 
     /// Per object, the objects that can block its shadow rays: those `kept`
-    /// where they still hold, the others found afresh.
+    /// where they still hold, patched where only moved objects change them
+    /// ([`Casters::patched`]), found afresh for the moved objects.
     fn casters_of(&self, kept: Option<Kept>) -> Vec<Option<Casters>> {
         let scene = self.scene;
         let n = scene.objects.len();
+        let mut moved = vec![false; n];
         let (old, moved_boxes) = match kept {
             Some(Kept {
                 mut casters,
-                moved,
+                moved: list,
                 boxes,
                 ..
             }) if casters.len() == n => {
-                for &i in &moved {
+                for &i in &list {
                     if let Some(c) = casters.get_mut(i) {
                         *c = None;
+                        moved[i] = true;
                     }
                 }
                 (casters, boxes)
             }
             _ => ((0..n).map(|_| None).collect(), Vec::new()),
         };
+        // The moved objects where they are, in query order.
+        let now: Vec<(usize, Aabb)> = (self.bounded.iter().copied())
+            .filter(|&(i, _)| moved[i])
+            .collect();
         // Beyond a few dozen objects, find each piece's casters through a
         // hierarchy rather than by testing every object: the frame's own
         // where it has one (over the same boxes).
@@ -454,14 +461,13 @@ impl<'a> Prepared<'a> {
             .par_iter()
             .zip(old)
             .enumerate()
-            .map(|(i, (o, old))| {
-                if let Some(c) =
-                    old.filter(|_| Casters::keep_for(&o.shape, &scene.lights, &moved_boxes))
-                {
-                    return Some(c);
+            .map(|(i, (o, old))| match old {
+                Some(c) if Casters::keep_for(&o.shape, &scene.lights, &moved_boxes) => Some(c),
+                Some(c) => Some(c.patched((i, &o.shape), &scene.lights, &moved, &now)),
+                None => {
+                    let bvh = bvh.map(|b| (b, &boxes[..]));
+                    Casters::new((i, &o.shape), &scene.lights, &self.bounded, bvh)
                 }
-                let bvh = bvh.map(|b| (b, &boxes[..]));
-                Casters::new((i, &o.shape), &scene.lights, &self.bounded, bvh)
             })
             .collect()
     }

@@ -197,6 +197,19 @@ impl<'a> WideList<'a> {
         })
     }
 
+    /// The items with their boxes, in order.
+    pub(crate) fn entries(self) -> impl Iterator<Item = (usize, Aabb)> + 'a {
+        self.chunks.iter().flat_map(|c| {
+            (0..W).filter(|&j| c.used >> j & 1 != 0).map(|j| {
+                let b = Aabb {
+                    min: Vec3::new(c.min[0][j], c.min[1][j], c.min[2][j]),
+                    max: Vec3::new(c.max[0][j], c.max[1][j], c.max[2][j]),
+                };
+                (c.items[j] as usize, b)
+            })
+        })
+    }
+
     /// Calls `visit(item, box, t_max)` for every box, in order, that the ray
     /// meets before `t_max`, which is `limit()` asked again at each chunk: a
     /// `visit` whose limit fell within the chunk tests the box again with it.
