@@ -280,6 +280,14 @@ fn moved(
         .filter(|&(_, &m)| !m)
         .fold(0, |a, (&b, _)| a | b);
     out.sure = out.cells & MET & !still;
+    // The moved balls' shadow bits that no other ball holds.
+    let ball = |i: usize| matches!(after.objects[i].shape, Shape::Sphere { .. });
+    let shared = (0..bits.len())
+        .filter(|&i| ball(i))
+        .fold((0, 0), |(once, more), i| {
+            (once | bits[i], more | (once & bits[i]))
+        });
+    out.sole = (out.balls.iter()).fold(0, |a, b| a | b.3) & !(shared.1 << 32);
     was.retain(|&(b, _)| b & still != 0);
     out.was = was;
     out.spans = Spans::new(cam, after, (!out.coarse).then_some(&pieces[..]));

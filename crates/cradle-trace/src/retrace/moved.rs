@@ -30,6 +30,10 @@ pub(crate) struct Moved {
     /// The moved balls: where each was and is, its radius, and its
     /// [`SHADOW`] bit.
     pub(crate) balls: Vec<(Vec3, Vec3, f32, Cells)>,
+    /// The [`SHADOW`] bits of the moved balls that no other ball shares: a
+    /// blocked shadow ray that names one of them was blocked by that ball
+    /// where it was ([`Self::unblocked`]).
+    pub(crate) sole: Cells,
     /// The [`MET`] bits of the moved objects that no object that stayed
     /// shares: a pixel with one is taken at once.
     pub(crate) sure: Cells,
@@ -249,7 +253,7 @@ impl Moved {
                     break;
                 }
                 if seg.flagged() {
-                    if shadow != 0 && self.unblocked(seg, shadow) {
+                    if shadow != 0 && self.unblocked(seg, (shadow, rm.cells[k])) {
                         hit.set(k);
                     }
                     continue;
@@ -281,18 +285,20 @@ impl Moved {
     /// ball and the pad). Only those balls: a pixel kept because its ray
     /// passes through another ball would keep a record that names a blocker
     /// no longer in the way, and miss that ball leaving later.
-    fn unblocked(&self, seg: &Seg, shadow: Cells) -> bool {
+    ///
+    /// Where each of the pixel's [`HITS`] bits (`all`: its cells) is one of
+    /// [`Self::sole`], the ray's blocker is a moved ball, and that ball where
+    /// it was met it: it blocked the ray when the pixel was traced, and in
+    /// each frame since that it moved, the ray passed well through it, or the
+    /// pixel was traced again. The first test is then passed over.
+    fn unblocked(&self, seg: &Seg, (shadow, all): (Cells, Cells)) -> bool {
         let pad = Near::PAD;
         let (p, q) = (seg.a, seg.b);
         let d = q - p;
         let d2 = d.length_squared();
-        let mut met = false;
-        for &(c0, _, r, bit) in &self.balls {
-            if bit & shadow != 0 && point_segment(c0, p, q) <= r + pad {
-                met = true;
-                break;
-            }
-        }
+        let met = all & HITS & !self.sole == 0
+            || (self.balls.iter())
+                .any(|&(c0, _, r, bit)| bit & shadow != 0 && point_segment(c0, p, q) <= r + pad);
         if !met {
             return false;
         }
@@ -487,5 +493,34 @@ mod tests {
         // Without the ball's shadow bit a flagged segment is not read.
         let rm = row(&[(0, vec![shadow_through_origin()])]);
         assert!(taken(&away, &rm).is_empty());
+    }
+
+    #[test]
+    fn a_sole_ball_bit_passes_over_the_old_place_only_where_it_is_the_pixels_every_bit() {
+        let shadow = met(0) << 32;
+        // Ball 0 holds its bit alone: a ray that names it was blocked by it.
+        let mut away = ball_moved(Vec3::ZERO, Vec3::new(0.1, 0.0, 0.0));
+        away.sole = shadow;
+        let mut aside = shadow_through_origin();
+        aside.a.x += 0.05;
+        aside.b.x += 0.05;
+        aside.flag();
+        // The core's ray is lit again; so is any ray that names only the
+        // ball (it passes well through the ball where it is no more).
+        let rm = row(&[
+            (shadow, vec![shadow_through_origin()]),
+            (shadow, vec![aside]),
+        ]);
+        assert_eq!(taken(&away, &rm), [0, 1]);
+        // A pixel that also names a string (bit 1, still) that blocked the
+        // ray 5 cm from the ball: the ball's old place decides, and it never
+        // met the ray.
+        let rm = row(&[(shadow | met(1), vec![aside])]);
+        assert!(taken(&away, &rm).is_empty());
+        // Moved 2 mm: the core's ray still passes well through it.
+        let mut still = ball_moved(Vec3::ZERO, Vec3::new(0.002, 0.0, 0.0));
+        still.sole = shadow;
+        let rm = row(&[(shadow, vec![shadow_through_origin()])]);
+        assert!(taken(&still, &rm).is_empty());
     }
 }
