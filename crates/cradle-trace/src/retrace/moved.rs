@@ -151,11 +151,7 @@ impl Moved {
                 }
                 // The block's pixels that hold a record: in the edge layer
                 // only its edges.
-                let held = if EDGES {
-                    (x0..x1).fold(0, |m, x| m | u32::from(is[x]) << (x - x0))
-                } else {
-                    u32::MAX
-                };
+                let held = if EDGES { flags(&is[x0..x1]) } else { u32::MAX };
                 if held == 0 {
                     continue;
                 }
@@ -194,8 +190,22 @@ impl Moved {
         // Whether a pixel of the block met a moved object (hit bits): where
         // none did, a pixel in a run need not read its cells.
         let hits = rm.blocks[xs.start / BLOCK] & self.cells & HITS != 0;
+        // The block's pixels in a run, where any moved shape may meet a free
+        // segment (`r`, moved on by `may_hold`, is the first run that ends
+        // after the block's first pixel).
+        let in_runs = run_bits(&runs[*r..], &xs);
+        // Those in a sure run (none in the edge layer).
+        let in_sure = if EDGES {
+            0
+        } else {
+            while *sr < sure.len() && sure[*sr].1 as usize <= xs.start {
+                *sr += 1;
+            }
+            run_bits(&sure[*sr..], &xs)
+        };
         for k in xs.clone() {
-            if EDGES && held >> (k - xs.start) & 1 == 0 {
+            let bit = k - xs.start;
+            if EDGES && held >> bit & 1 == 0 {
                 continue;
             }
             // The segments of a pixel further on, on their way (every pixel
@@ -203,11 +213,7 @@ impl Moved {
             if !cells_only {
                 rm.prefetch(s, k + PREFETCH_AHEAD);
             }
-            while *r < runs.len() && runs[*r].1 as usize <= k {
-                *r += 1;
-            }
-            // In a run, any moved shape may meet a free segment.
-            let in_run = runs.get(*r).is_some_and(|run| run.0 as usize <= k);
+            let in_run = in_runs >> bit & 1 != 0;
             let own = if in_run && !hits {
                 0
             } else {
@@ -241,20 +247,19 @@ impl Moved {
                 hit.set(k);
                 continue;
             }
-            while *sr < sure.len() && sure[*sr].1 as usize <= k {
-                *sr += 1;
-            }
-            if sure.get(*sr).is_some_and(|run| run.0 as usize <= k) {
+            if in_sure >> bit & 1 != 0 {
                 hit.set(k);
                 continue;
             }
+            // (In the edge layer a pixel `taken` is in `hit` already.)
+            if EDGES && hit.has(k) {
+                continue;
+            }
             for seg in rm.of(k) {
-                if hit.has(k) {
-                    break;
-                }
                 if seg.flagged() {
                     if shadow != 0 && self.unblocked(seg, (shadow, rm.cells[k])) {
                         hit.set(k);
+                        break;
                     }
                     continue;
                 }
@@ -263,8 +268,12 @@ impl Moved {
                 }
                 let near_box =
                     seg.a.max(seg.b).cmpge(self.lo).all() && seg.a.min(seg.b).cmple(self.hi).all();
+                // A full batch is tested at once, which may take the pixel.
                 if near_box && batch.push(k as u32, cells, seg) {
                     batch.test(s, &self.near, hit);
+                    if hit.has(k) {
+                        break;
+                    }
                 }
             }
         }
@@ -338,6 +347,49 @@ fn may_hold(runs: &[(u32, u32)], r: &mut usize, met: Cells, (x0, x1): (usize, us
         *r += 1;
     }
     met != 0 || runs.get(*r).is_some_and(|run| (run.0 as usize) < x1)
+}
+
+// `flags` and `low_bits` hold a block in the low bits of a `u32`, its flags
+// in one `u64`.
+const _: () = assert!(BLOCK == 8);
+
+/// The pixels of block `xs` that `runs` (ascending, apart; the first ending
+/// after `xs.start`) hold: bit `k - xs.start` for pixel `k`.
+#[inline(always)]
+#[expect(
+    clippy::inline_always,
+    reason = "a few compares, inlined into each build"
+)]
+fn run_bits(runs: &[(u32, u32)], xs: &std::ops::Range<usize>) -> u32 {
+    (runs.iter())
+        .take_while(|run| (run.0 as usize) < xs.end)
+        .fold(0, |m, &(a, b)| {
+            let (a, b) = ((a as usize).max(xs.start), (b as usize).min(xs.end));
+            m | (low_bits(b - xs.start) & !low_bits(a - xs.start))
+        })
+}
+
+/// The bits below bit `n` (`n` at most [`BLOCK`]).
+#[inline(always)]
+#[expect(clippy::inline_always, reason = "a shift, inlined into each build")]
+fn low_bits(n: usize) -> u32 {
+    (1u32 << n) - 1
+}
+
+/// Bit `i` set where `is[i]` holds (at most [`BLOCK`] flags): a whole
+/// block's eight bytes, each 0 or 1, gathered into the top byte of one
+/// product (byte `i` of the multiplier's lands its bit at `56 + i`, and no
+/// two partial products meet there).
+#[inline(always)]
+#[expect(clippy::inline_always, reason = "a product, inlined into each build")]
+fn flags(is: &[bool]) -> u32 {
+    match <[bool; 8]>::try_from(is) {
+        Ok(eight) => {
+            let bytes = u64::from_le_bytes(eight.map(u8::from));
+            (bytes.wrapping_mul(0x0102_0408_1020_4080) >> 56) as u32
+        }
+        Err(_) => (is.iter().enumerate()).fold(0, |m, (i, &f)| m | u32::from(f) << i),
+    }
 }
 
 /// [`Moved::dirty`] after its row test, as a lane kernel.
