@@ -195,7 +195,8 @@ impl Casters {
         let boxes = piece_boxes(shape);
         let pieces = boxes.len();
         let u = if len > 0.0 { (b - a) / len } else { Vec3::ZERO };
-        let mut chunks = Vec::new();
+        // Most lists fill a chunk, with the object and without.
+        let mut chunks = Vec::with_capacity(2 * lights.len() * pieces);
         let mut ranges = Vec::with_capacity(lights.len() * pieces);
         let mut found = Vec::new();
         for l in lights {
@@ -270,10 +271,19 @@ impl Casters {
             near.clear();
             near.extend(now.iter().filter(|(_, b)| b.overlaps(&all)));
             for (piece, reach) in reaches.iter().enumerate() {
+                let [from, to, end] = self.ranges[li * self.pieces + piece].map(|i| i as usize);
+                let old = WideList::of(&self.chunks, from..to);
+                let gains = |r: &&Reach| near.iter().any(|(_, b)| r.meets(b));
+                if reach.as_ref().is_none_or(|r| !gains(&r)) && !old.items().any(|i| moved[i]) {
+                    // No moved object enters or leaves: both lists as they were.
+                    let at = chunks.len() as u32;
+                    chunks.extend_from_slice(&self.chunks[from..end]);
+                    let shift = |i: usize| at + (i - from) as u32;
+                    ranges.push([at, shift(to), shift(end)]);
+                    continue;
+                }
                 list.clear();
                 if let Some(reach) = reach {
-                    let [from, to, _] = self.ranges[li * self.pieces + piece];
-                    let old = WideList::of(&self.chunks, from as usize..to as usize);
                     list.extend(old.entries().filter(|&(i, _)| !moved[i]));
                     list.extend(near.iter().filter(|(_, b)| reach.meets(b)));
                 }
