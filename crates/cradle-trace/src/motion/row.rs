@@ -87,9 +87,11 @@ impl RowMotion {
             }
             pending = Some(b / SUPER);
         }
-        if let Some(s) = pending {
-            self.supers[s] = union(chunk(&self.blocks, s, SUPER));
-        }
+        // (No pixel changed: the unions hold.)
+        let Some(s) = pending else {
+            return;
+        };
+        self.supers[s] = union(chunk(&self.blocks, s, SUPER));
         self.any = union(&self.supers);
     }
 
@@ -238,11 +240,13 @@ impl RowMotion {
     }
 }
 
-/// The union of `cells`.
+/// The union of `cells` (eight of them, a block's or a super-block's, unrolled).
 fn union(cells: &[Cells]) -> Cells {
-    cells.iter().fold(0, |a, c| a | c)
+    match <&[Cells; 8]>::try_from(cells) {
+        Ok(eight) => eight.iter().fold(0, |a, c| a | c),
+        Err(_) => cells.iter().fold(0, |a, c| a | c),
+    }
 }
-
 /// Chunk `i` of `n` of `all` (the last one shorter).
 fn chunk(all: &[Cells], i: usize, n: usize) -> &[Cells] {
     &all[i * n..((i + 1) * n).min(all.len())]
