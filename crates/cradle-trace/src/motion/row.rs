@@ -220,21 +220,26 @@ impl RowMotion {
         // growing it again.
         let mut segs = Vec::with_capacity(self.segs.capacity());
         // Pixels whose segments follow each other in the old buffer (those not
-        // traced again since the last compaction) are copied as one run.
-        let mut run = 0..0;
-        for span in &mut self.span {
-            let (a, b) = (span[0] as usize, span[1] as usize);
-            if a != run.end {
-                segs.extend_from_slice(&self.segs[run.clone()]);
-                run = a..a;
+        // traced again since the last compaction) are copied as one run, and
+        // their spans moved by as much as their run.
+        let n = self.span.len();
+        let mut i = 0;
+        while i < n {
+            let [start, mut end] = self.span[i];
+            let mut j = i + 1;
+            while j < n && self.span[j][0] == end {
+                end = self.span[j][1];
+                j += 1;
             }
-            run.end = b;
-            // Where the pixel's segments land: after the runs copied, and
-            // this one's segments before it.
-            let start = (segs.len() + (a - run.start)) as u32;
-            *span = [start, start + (b - a) as u32];
+            let to = segs.len() as u32;
+            segs.extend_from_slice(&self.segs[start as usize..end as usize]);
+            // (Each span lies within the run: the sum is exact.)
+            let by = to.wrapping_sub(start);
+            for span in &mut self.span[i..j] {
+                *span = span.map(|e| e.wrapping_add(by));
+            }
+            i = j;
         }
-        segs.extend_from_slice(&self.segs[run]);
         self.segs = segs;
         self.garbage = 0;
     }
