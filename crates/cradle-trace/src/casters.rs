@@ -374,6 +374,38 @@ mod tests {
         })
     }
 
+    /// A ball of radius 2 cm at `centre`, on two strings from the rail at
+    /// `x`, 0.2 m up and 8 cm either side, pushed onto `shapes`.
+    fn pendulum(shapes: &mut Vec<Shape>, x: f32, centre: Vec3) {
+        shapes.push(Shape::Sphere {
+            centre,
+            radius: 0.02,
+        });
+        for z in [-0.08, 0.08] {
+            shapes.push(Shape::Cylinder {
+                a: Vec3::new(x, 0.2, z),
+                b: centre,
+                radius: 0.0005,
+            });
+        }
+    }
+
+    /// A white point light at `position`.
+    fn point(position: Vec3) -> Light {
+        Light::Point {
+            position,
+            color: Vec3::ONE,
+        }
+    }
+
+    /// A white directional light along `direction` (normalized here).
+    fn directional(direction: Vec3) -> Light {
+        Light::Directional {
+            direction: direction.normalize(),
+            color: Vec3::ONE,
+        }
+    }
+
     /// A list's place (light, piece, outside) and its objects with their
     /// boxes, in order.
     type List = ((usize, usize, bool), Vec<(usize, Aabb)>);
@@ -394,17 +426,10 @@ mod tests {
 
     #[test]
     fn patched_casters_hold_what_fresh_ones_hold_with_the_moved_objects_last() {
-        let color = Vec3::ONE;
         let lights = [
-            Light::Point {
-                position: Vec3::new(0.3, 0.6, 0.5),
-                color,
-            },
-            Light::Directional {
-                direction: Vec3::new(-0.4, -1.0, 0.1).normalize(),
-                color,
-            },
-            Light::Ambient { color },
+            point(Vec3::new(0.3, 0.6, 0.5)),
+            directional(Vec3::new(-0.4, -1.0, 0.1)),
+            Light::Ambient { color: Vec3::ONE },
         ];
         // Five balls touching in a row, each on two slanted strings.
         let row = |swing: f32| {
@@ -414,17 +439,7 @@ mod tests {
                 // The first pendulum swung out by `swing` radians.
                 let a = if k == 0 { swing } else { 0.0 };
                 let centre = Vec3::new(x - 0.16 * a.sin(), 0.2 - 0.16 * a.cos(), 0.0);
-                shapes.push(Shape::Sphere {
-                    centre,
-                    radius: 0.02,
-                });
-                for z in [-0.08, 0.08] {
-                    shapes.push(Shape::Cylinder {
-                        a: Vec3::new(x, 0.2, z),
-                        b: centre,
-                        radius: 0.0005,
-                    });
-                }
+                pendulum(&mut shapes, x, centre);
             }
             shapes
         };
@@ -474,45 +489,21 @@ mod tests {
 
     #[test]
     fn keeping_casters_answers_as_the_test_of_every_piece_against_every_moved_box() {
-        let color = Vec3::ONE;
         // Point lights above the row and beside it, a light straight down
         // (its direction has zero components: the reaches' slabs along those
         // axes are unbounded) and a slanted one.
         let lights = [
-            Light::Point {
-                position: Vec3::new(0.7, 0.6, 0.5),
-                color,
-            },
-            Light::Point {
-                position: Vec3::new(-2.5, 0.1, -0.3),
-                color,
-            },
-            Light::Directional {
-                direction: Vec3::NEG_Y,
-                color,
-            },
-            Light::Directional {
-                direction: Vec3::new(0.3, -1.0, 0.2).normalize(),
-                color,
-            },
-            Light::Ambient { color },
+            point(Vec3::new(0.7, 0.6, 0.5)),
+            point(Vec3::new(-2.5, 0.1, -0.3)),
+            directional(Vec3::NEG_Y),
+            directional(Vec3::new(0.3, -1.0, 0.2)),
+            Light::Ambient { color: Vec3::ONE },
         ];
         // A row of balls, each on two slanted strings.
         let mut shapes = Vec::new();
         for k in 0..12 {
             let x = -2.0 + 0.1 * k as f32;
-            let centre = Vec3::new(x, 0.05, 0.0);
-            shapes.push(Shape::Sphere {
-                centre,
-                radius: 0.02,
-            });
-            for z in [-0.08, 0.08] {
-                shapes.push(Shape::Cylinder {
-                    a: Vec3::new(x, 0.2, z),
-                    b: centre,
-                    radius: 0.0005,
-                });
-            }
+            pendulum(&mut shapes, x, Vec3::new(x, 0.05, 0.0));
         }
         let (mut kept, mut not) = (0, 0);
         // A small moved box at each point of a grid over the row and above

@@ -476,6 +476,15 @@ mod tests {
         s
     }
 
+    /// [`shadow_through_origin`] 5 cm along x, flagged.
+    fn shadow_aside() -> Seg {
+        let mut s = shadow_through_origin();
+        s.a.x += 0.05;
+        s.b.x += 0.05;
+        s.flag();
+        s
+    }
+
     #[test]
     fn a_pixel_whose_ray_met_a_moved_object_is_taken_without_its_segments() {
         let moved = ball_moved(Vec3::ZERO, Vec3::new(0.001, 0.0, 0.0));
@@ -516,10 +525,7 @@ mod tests {
         let shadow = met(0) << 32;
         // A ray blocked by the ball where it was, and one that passed 5 cm
         // from it (a pixel with the ball's shadow bit from another ray).
-        let mut aside = shadow_through_origin();
-        aside.a.x += 0.05;
-        aside.b.x += 0.05;
-        aside.flag();
+        let aside = shadow_aside();
         let rm = row(&[
             (shadow, vec![shadow_through_origin()]),
             (shadow, vec![aside]),
@@ -553,10 +559,7 @@ mod tests {
         // Ball 0 holds its bit alone: a ray that names it was blocked by it.
         let mut away = ball_moved(Vec3::ZERO, Vec3::new(0.1, 0.0, 0.0));
         away.sole = shadow;
-        let mut aside = shadow_through_origin();
-        aside.a.x += 0.05;
-        aside.b.x += 0.05;
-        aside.flag();
+        let aside = shadow_aside();
         // The core's ray is lit again; so is any ray that names only the
         // ball (it passes well through the ball where it is no more).
         let rm = row(&[
