@@ -1,11 +1,15 @@
 //! The moved shapes together ([`NearSet`]) and the motion filter's inner
-//! test, eight ray segments at a time: an incremental
+//! tests, eight ray segments at a time: an incremental
 //! frame gathers the segments of a row's pixels whose cells meet the moved ones
 //! into a [`Batch`], and tests each full batch against each moved object at
 //! once (the segments in lanes, the shape's numbers in every lane; each
 //! object where it is now), by the boxes and by the distance from the shape's
 //! line, which bounds the true distance from below. Only the pairs that test
-//! leaves take the exact `Near::meets`. Written
+//! leaves take the exact `Near::meets`. Blocked shadow rays whose blocker is
+//! known to be a moved ball go to a batch of their own, each lane with its
+//! pixel's shadow bits in place of cells ([`Batch::test_blocked`]: each lane
+//! works out what `Moved::unblocked` works out of a ball's new place, the
+//! same operations in the same order). Written
 //! once over the lane build (`crate::simd`): AVX2 where the CPU has it, the
 //! portable build elsewhere; both find the pixels the one-by-one test
 //! (`Near::meets` of every segment and shape) finds.
@@ -37,7 +41,8 @@ pub(crate) struct Batch {
     q: [[f32; N]; 3],
     /// The pixel (index in its row) of each segment.
     who: [u32; N],
-    /// Its cells that meet the moved ones.
+    /// Its cells that meet the moved ones (in a batch of blocked shadow
+    /// rays, its pixel's shadow bits of moved balls).
     cells: [Cells; N],
 }
 
@@ -128,6 +133,65 @@ impl Batch {
                     hit.set(who as usize);
                 }
             }
+        }
+        self.n = 0;
+    }
+
+    /// For a batch of blocked shadow rays' segments (flagged), each with its
+    /// pixel's [`super::SHADOW`] bits of moved balls in place of its cells:
+    /// adds to `hit` the pixel of each segment that passes well through none
+    /// of the `balls` (each where it was and is, its radius and its shadow
+    /// bit) whose bits its pixel holds: its nearest point to the centre
+    /// inside it and nearer than the radius less [`Near::PAD`], both its ends
+    /// farther than the radius and the pad. Empties the batch.
+    #[inline(always)]
+    pub(crate) fn test_blocked<S: Simd>(
+        &mut self,
+        s: S,
+        balls: &[(Vec3, Vec3, f32, Cells)],
+        hit: &mut RowBits<'_>,
+    ) {
+        if self.n == 0 {
+            return;
+        }
+        let l3 = |v: &[[f32; N]; 3]| [s.load(&v[0]), s.load(&v[1]), s.load(&v[2])];
+        let (p, q) = (l3(&self.p), l3(&self.q));
+        let dot = |a: &[S::F; 3], b: &[S::F; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+        let d = [q[0] - p[0], q[1] - p[1], q[2] - p[2]];
+        let d2 = dot(&d, &d);
+        let zero = s.splat(0.0);
+        let pad = Near::PAD;
+        let mut still = 0u8;
+        for &(_, c1, r, bit) in balls {
+            let with = (0..self.n).fold(0u8, |m, i| m | u8::from(self.cells[i] & bit != 0) << i);
+            if with & !still == 0 {
+                continue;
+            }
+            let c = [s.splat(c1.x), s.splat(c1.y), s.splat(c1.z)];
+            let w = [c[0] - p[0], c[1] - p[1], c[2] - p[2]];
+            let v = [c[0] - q[0], c[1] - q[1], c[2] - q[2]];
+            let wd = dot(&w, &d);
+            let cross = [
+                w[1] * d[2] - w[2] * d[1],
+                w[2] * d[0] - w[0] * d[2],
+                w[0] * d[1] - w[1] * d[0],
+            ];
+            let c2 = dot(&cross, &cross);
+            let (inner, outer) = (r - pad, r + pad);
+            let out2 = s.splat(outer * outer * 1.001);
+            let through = S::lt(c2 * s.splat(1.001), s.splat(inner * inner) * d2)
+                & S::lt(zero, wd)
+                & S::lt(wd, d2)
+                & S::lt(out2, dot(&w, &w))
+                & S::lt(out2, dot(&v, &v));
+            still |= S::bits(through) & with;
+        }
+        let valid = ((1u16 << self.n) - 1) as u8;
+        let mut lit = valid & !still;
+        while lit != 0 {
+            let i = lit.trailing_zeros() as usize;
+            lit &= lit - 1;
+            hit.set(self.who[i] as usize);
         }
         self.n = 0;
     }
@@ -226,5 +290,92 @@ impl Kernel for MeetsOne<'_> {
         batch.push(0, self.cells, self.seg);
         batch.test(s, self.set, &mut hit);
         hit.has(0)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Batch;
+    use crate::bits::BitRoom;
+    use crate::motion::{Cells, Near, Seg};
+    use crate::simd::{Build, Kernel, Simd};
+    use glam::Vec3;
+
+    /// The pixels of `segs` (pixel `i` for segment `i`, every one with shadow
+    /// bit `bit`) that [`Batch::test_blocked`] in lane build `build` takes.
+    fn lit(
+        build: Build,
+        segs: &[Seg],
+        balls: &[(Vec3, Vec3, f32, Cells)],
+        bit: Cells,
+    ) -> Vec<usize> {
+        struct Run<'a>(&'a [Seg], &'a [(Vec3, Vec3, f32, Cells)], Cells);
+        impl Kernel for Run<'_> {
+            type Output = Vec<usize>;
+            fn run<S: Simd>(self, s: S) -> Vec<usize> {
+                let mut room = BitRoom::new();
+                let mut hit = room.row(self.0.len());
+                let mut batch = Batch::default();
+                for (i, seg) in self.0.iter().enumerate() {
+                    if batch.push(i as u32, self.2, seg) {
+                        batch.test_blocked(s, self.1, &mut hit);
+                    }
+                }
+                batch.test_blocked(s, self.1, &mut hit);
+                hit.iter().collect()
+            }
+        }
+        build.run(Run(segs, balls, bit))
+    }
+
+    #[test]
+    fn a_batch_takes_the_rays_that_pass_well_through_no_ball_of_their_pixel() {
+        let r = 0.02;
+        let c = Vec3::new(0.1, 0.2, 0.0);
+        let bit: Cells = 1 << 96;
+        // Rays along y at offsets across the ball, long (ends far outside
+        // it) or stopping short of it or inside it; each offset well away
+        // from the radius less the pad, so the answer does not hang on
+        // rounding.
+        let mut segs = Vec::new();
+        let mut want = Vec::new();
+        for (k, off) in [0.0, 0.005, 0.0150, 0.0195, 0.0205, 0.03, 0.1]
+            .into_iter()
+            .enumerate()
+        {
+            for (y0, y1) in [
+                (-0.1, 0.3),
+                (0.0, 0.15),
+                (0.19, 0.21),
+                (-0.1, 0.205),
+                (0.21, 0.5),
+            ] {
+                let a = Vec3::new(c.x + off, y0, c.z + 0.001 * k as f32);
+                let b = Vec3::new(c.x + off, y1, c.z + 0.001 * k as f32);
+                let mut s = Seg { a, b };
+                s.flag();
+                // Well through: the line passes within the radius less the
+                // pad of the centre, its nearest point (at the centre's
+                // height) inside the segment, both ends outside the ball
+                // and the pad.
+                let depth = (off * off + (0.001 * k as f32).powi(2)).sqrt();
+                let outside = |e: Vec3| e.distance(c) > r + Near::PAD;
+                let through =
+                    depth < r - Near::PAD && y0 < c.y && c.y < y1 && outside(a) && outside(b);
+                if !through {
+                    want.push(segs.len());
+                }
+                segs.push(s);
+            }
+        }
+        let balls = [(Vec3::ZERO, c, r, bit)];
+        for build in Build::all() {
+            assert_eq!(lit(build, &segs, &balls, bit), want, "{build:?}");
+            // A ball whose bit the pixels do not hold blocks nothing: every
+            // ray is taken.
+            let other = [(Vec3::ZERO, c, r, bit << 1)];
+            let all: Vec<usize> = (0..segs.len()).collect();
+            assert_eq!(lit(build, &segs, &other, bit), all, "{build:?}");
+        }
     }
 }

@@ -32,7 +32,8 @@ pub(crate) struct Moved {
     pub(crate) balls: Vec<(Vec3, Vec3, f32, Cells)>,
     /// The [`SHADOW`] bits of the moved balls that no other ball shares: a
     /// blocked shadow ray that names one of them was blocked by that ball
-    /// where it was ([`Self::unblocked`]).
+    /// where it was, so its new place alone decides
+    /// ([`Batch::test_blocked`]).
     pub(crate) sole: Cells,
     /// The [`MET`] bits of the moved objects that no object that stayed
     /// shares: a pixel with one is taken at once.
@@ -129,7 +130,7 @@ impl Moved {
         for &x in taken {
             hit.set(x as usize);
         }
-        let mut batch = Batch::default();
+        let mut batch = (Batch::default(), Batch::default());
         let runs = self.spans.row(y);
         let sure = if EDGES { &[] } else { self.spans.sure_row(y) };
         // The first run that ends after the pixel at hand (pixels ascend).
@@ -164,7 +165,8 @@ impl Moved {
                 );
             }
         }
-        batch.test(s, &self.near, &mut hit);
+        batch.0.test(s, &self.near, &mut hit);
+        batch.1.test_blocked(s, &self.balls, &mut hit);
         out.extend(hit.iter().map(|k| k as u32));
         !out.is_empty()
     }
@@ -184,7 +186,7 @@ impl Moved {
         (rm, xs, held): (&RowMotion, std::ops::Range<usize>, u32),
         (runs, r): (&[(u32, u32)], &mut usize),
         (sure, sr): (&[(u32, u32)], &mut usize),
-        (batch, hit): (&mut Batch, &mut crate::bits::RowBits<'_>),
+        ((batch, blocked), hit): (&mut (Batch, Batch), &mut crate::bits::RowBits<'_>),
     ) {
         let cells_only = !rm.tracked() || self.coarse;
         // Whether a pixel of the block met a moved object (hit bits): where
@@ -255,11 +257,28 @@ impl Moved {
             if EDGES && hit.has(k) {
                 continue;
             }
+            // Where each of the pixel's hit bits is one of `sole`, a blocked
+            // shadow ray's blocker is a moved ball, and that ball where it
+            // was met it: it blocked the ray when the pixel was traced, and
+            // in each frame since that it moved, the ray passed well through
+            // it, or the pixel was traced again. Its new places alone then
+            // decide, eight rays at a time ([`Batch::test_blocked`]).
+            let sole = shadow != 0 && rm.cells[k] & HITS & !self.sole == 0;
             for seg in rm.of(k) {
                 if seg.flagged() {
-                    if shadow != 0 && self.unblocked(seg, (shadow, rm.cells[k])) {
-                        hit.set(k);
-                        break;
+                    if shadow == 0 {
+                        continue;
+                    }
+                    if !sole {
+                        if self.unblocked(seg, shadow) {
+                            hit.set(k);
+                            break;
+                        }
+                    } else if blocked.push(k as u32, shadow, seg) {
+                        blocked.test_blocked(s, &self.balls, hit);
+                        if hit.has(k) {
+                            break;
+                        }
                     }
                     continue;
                 }
@@ -293,21 +312,15 @@ impl Moved {
     /// to the centre inside it and deeper than the pad, both ends outside the
     /// ball and the pad). Only those balls: a pixel kept because its ray
     /// passes through another ball would keep a record that names a blocker
-    /// no longer in the way, and miss that ball leaving later.
-    ///
-    /// Where each of the pixel's [`HITS`] bits (`all`: its cells) is one of
-    /// [`Self::sole`], the ray's blocker is a moved ball, and that ball where
-    /// it was met it: it blocked the ray when the pixel was traced, and in
-    /// each frame since that it moved, the ray passed well through it, or the
-    /// pixel was traced again. The first test is then passed over.
-    fn unblocked(&self, seg: &Seg, (shadow, all): (Cells, Cells)) -> bool {
+    /// no longer in the way, and miss that ball leaving later. The second test
+    /// is the one [`Batch::test_blocked`] works out in lanes.
+    fn unblocked(&self, seg: &Seg, shadow: Cells) -> bool {
         let pad = Near::PAD;
         let (p, q) = (seg.a, seg.b);
         let d = q - p;
         let d2 = d.length_squared();
-        let met = all & HITS & !self.sole == 0
-            || (self.balls.iter())
-                .any(|&(c0, _, r, bit)| bit & shadow != 0 && point_segment(c0, p, q) <= r + pad);
+        let met = (self.balls.iter())
+            .any(|&(c0, _, r, bit)| bit & shadow != 0 && point_segment(c0, p, q) <= r + pad);
         if !met {
             return false;
         }
