@@ -110,6 +110,39 @@ impl Reach {
     }
 }
 
+/// The reaches of an object's pieces towards each light (`None` for ambient
+/// light), each light's with the box holding them all.
+struct Reaches(Vec<(Vec<Option<Reach>>, Aabb)>);
+
+impl Reaches {
+    fn of(shape: &Shape, lights: &[Light]) -> Self {
+        let boxes = piece_boxes(shape);
+        Self(
+            (lights.iter())
+                .map(|l| {
+                    let reaches: Vec<_> = boxes.iter().map(|&b| Reach::new(b, l)).collect();
+                    let all =
+                        (reaches.iter().flatten()).fold(Aabb::EMPTY, |h, r| h.union(r.bounds));
+                    (reaches, all)
+                })
+                .collect(),
+        )
+    }
+
+    /// Whether no reach meets one of `boxes`. In a long row most objects'
+    /// reaches pass far from the moved ones: the box holding all of an
+    /// object's reaches towards a light is tested first, and only the boxes
+    /// it meets are tested piece by piece.
+    fn miss(&self, boxes: &[Aabb]) -> bool {
+        let mut near = Vec::new();
+        self.0.iter().all(|(reaches, all)| {
+            near.clear();
+            near.extend(boxes.iter().filter(|m| m.overlaps(all)));
+            near.is_empty() || (reaches.iter().flatten()).all(|r| !near.iter().any(|m| r.meets(m)))
+        })
+    }
+}
+
 /// The boxes of a sphere or cylinder's pieces ([`Casters`]): a cylinder cut
 /// along its axis into pieces about four radii long (at most 16), each box
 /// holding its part of the shape and overlapping its neighbours' by a margin
@@ -220,57 +253,49 @@ impl Casters {
         })
     }
 
-    /// Whether the casters of an object with `shape` for `lights` are what
-    /// they were when only objects whose boxes (where they were and where
-    /// they are) are `moved` have moved since, the object not among them:
-    /// none of its lists can hold one of those boxes, so each holds the same
-    /// objects, with the same boxes.
+    /// These casters of object `me` with `shape` for `lights`, found when the
+    /// objects flagged in `moved` were elsewhere (`me` not among them), now
+    /// that those objects have moved from and to the boxes `boxes` and lie
+    /// in the boxes `now` (object and box, in query order).
     ///
-    /// In a long row most objects' reaches pass far from the moved ones: the
-    /// box holding all of an object's reaches towards a light is tested
-    /// first, and only the moved boxes it meets are tested piece by piece.
-    pub(crate) fn keep_for(shape: &Shape, lights: &[Light], moved: &[Aabb]) -> bool {
-        let boxes = piece_boxes(shape);
-        let mut reaches = Vec::with_capacity(boxes.len());
-        let mut near = Vec::with_capacity(moved.len());
-        lights.iter().all(|l| {
-            reaches.clear();
-            reaches.extend(boxes.iter().filter_map(|&b| Reach::new(b, l)));
-            let all = reaches.iter().fold(Aabb::EMPTY, |h, r| h.union(r.bounds));
-            near.clear();
-            near.extend(moved.iter().filter(|m| m.overlaps(&all)));
-            near.is_empty() || reaches.iter().all(|r| !near.iter().any(|m| r.meets(m)))
-        })
-    }
-
-    /// The casters of object `me` with `shape` for `lights` (these, found
-    /// when the objects `moved` flags were elsewhere; `me` not among them),
-    /// now that those objects lie in the boxes `now` (object and box, in
-    /// query order). Each list keeps its objects that did not move, in their
+    /// Where none of the object's reaches meets one of `boxes`, no list can
+    /// have gained or lost one of those objects: they are kept as they are.
+    /// Otherwise each list keeps its objects that did not move, in their
     /// order, and gains after them the moved ones whose box meets its reach
-    /// now: the objects a fresh list holds, with the same boxes, the moved
-    /// ones last. A shadow test's yes or no does not depend on the order;
-    /// which blocker it names first may.
-    ///
-    /// As in [`Self::keep_for`], the moved boxes are tested against the box
-    /// holding all of the object's reaches towards a light first.
-    pub(crate) fn patched(
-        &self,
+    /// now (a list no moved object enters or leaves is copied whole): the
+    /// objects a fresh list holds, with the same boxes, the moved ones last. A
+    /// shadow test's yes or no does not depend on the order; which blocker it
+    /// names first may.
+    pub(crate) fn updated(
+        self,
         (me, shape): (usize, &Shape),
         lights: &[Light],
-        moved: &[bool],
-        now: &[(usize, Aabb)],
+        (boxes, moved, now): (&[Aabb], &[bool], &[(usize, Aabb)]),
     ) -> Self {
-        let boxes = piece_boxes(shape);
+        let reaches = Reaches::of(shape, lights);
+        if reaches.miss(boxes) {
+            return self;
+        }
+        self.patched(me, &reaches, moved, now)
+    }
+
+    /// Whether [`Self::updated`] keeps the casters of an object with `shape`
+    /// for `lights` as they are, the moved objects' boxes (where they were
+    /// and where they are) being `moved`.
+    #[cfg(test)]
+    pub(crate) fn keep_for(shape: &Shape, lights: &[Light], moved: &[Aabb]) -> bool {
+        Reaches::of(shape, lights).miss(moved)
+    }
+
+    /// [`Self::updated`] where a moved box meets a reach: the lists patched.
+    fn patched(&self, me: usize, reaches: &Reaches, moved: &[bool], now: &[(usize, Aabb)]) -> Self {
         let mut chunks = Vec::with_capacity(self.chunks.len());
         let mut ranges = Vec::with_capacity(self.ranges.len());
         let (mut list, mut near) = (Vec::new(), Vec::new());
-        for (li, l) in lights.iter().enumerate() {
-            let reaches: Vec<Option<Reach>> = boxes.iter().map(|&b| Reach::new(b, l)).collect();
-            let all = (reaches.iter().flatten()).fold(Aabb::EMPTY, |h, r| h.union(r.bounds));
+        for (li, (per_piece, all)) in reaches.0.iter().enumerate() {
             near.clear();
-            near.extend(now.iter().filter(|(_, b)| b.overlaps(&all)));
-            for (piece, reach) in reaches.iter().enumerate() {
+            near.extend(now.iter().filter(|(_, b)| b.overlaps(all)));
+            for (piece, reach) in per_piece.iter().enumerate() {
                 let [from, to, end] = self.ranges[li * self.pieces + piece].map(|i| i as usize);
                 let old = WideList::of(&self.chunks, from..to);
                 let gains = |r: &&Reach| near.iter().any(|(_, b)| r.meets(b));
@@ -358,7 +383,7 @@ pub(crate) fn clear_of(g: &Geom, p: Vec3) -> bool {
 
 #[cfg(test)]
 mod tests {
-    use super::{Casters, Reach, piece_boxes};
+    use super::{Casters, Reach, Reaches, piece_boxes};
     use crate::geometry::{Aabb, bounds};
     use crate::scene::{Light, Shape};
     use glam::Vec3;
@@ -465,7 +490,8 @@ mod tests {
                 .collect();
             let (old, new) = (fresh(&before), fresh(&after));
             for i in 3..before.len() {
-                let patched = old[i].patched((i, &after[i]), &lights, &moved, &now);
+                let reaches = Reaches::of(&after[i], &lights);
+                let patched = old[i].patched(i, &reaches, &moved, &now);
                 let (got, want) = (lists(&patched, 2), lists(&new[i], 2));
                 if lists(&old[i], 2) != want {
                     changed += 1;

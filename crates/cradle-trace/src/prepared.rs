@@ -346,8 +346,8 @@ impl<'a> Prepared<'a> {
     }
 
     /// [`Self::with_shadow_culling`], keeping the casters of the frame before
-    /// (`kept`) of the objects whose lists none of the objects that moved
-    /// since can enter ([`Casters::keep_for`]).
+    /// (`kept`) of the objects that did not move, as they are or patched
+    /// ([`Casters::updated`]).
     #[must_use]
     pub(crate) fn with_shadow_culling_kept(mut self, on: bool, kept: Option<Kept>) -> Self {
         if !on {
@@ -414,8 +414,8 @@ impl<'a> Prepared<'a> {
     }
 
     /// Per object, the objects that can block its shadow rays: those `kept`
-    /// where they still hold, patched where only moved objects change them
-    /// ([`Casters::patched`]), found afresh for the moved objects.
+    /// as they hold or patched ([`Casters::updated`]), found afresh for the
+    /// moved objects.
     fn casters_of(&self, kept: Option<Kept>) -> Vec<Option<Casters>> {
         let scene = self.scene;
         let n = scene.objects.len();
@@ -461,13 +461,13 @@ impl<'a> Prepared<'a> {
             .par_iter()
             .zip(old)
             .enumerate()
-            .map(|(i, (o, old))| match old {
-                Some(c) if Casters::keep_for(&o.shape, &scene.lights, &moved_boxes) => Some(c),
-                Some(c) => Some(c.patched((i, &o.shape), &scene.lights, &moved, &now)),
-                None => {
-                    let bvh = bvh.map(|b| (b, &boxes[..]));
-                    Casters::new((i, &o.shape), &scene.lights, &self.bounded, bvh)
+            .map(|(i, (o, old))| {
+                let since = (&moved_boxes[..], &moved[..], &now[..]);
+                if let Some(c) = old {
+                    return Some(c.updated((i, &o.shape), &scene.lights, since));
                 }
+                let bvh = bvh.map(|b| (b, &boxes[..]));
+                Casters::new((i, &o.shape), &scene.lights, &self.bounded, bvh)
             })
             .collect()
     }

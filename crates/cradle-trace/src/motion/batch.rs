@@ -6,10 +6,9 @@
 //! object where it is now), by the boxes and by the distance from the shape's
 //! line, which bounds the true distance from below. Only the pairs that test
 //! leaves take the exact `Near::meets`. Blocked shadow rays whose blocker is
-//! known to be a moved ball go to a batch of their own, each lane with its
-//! pixel's shadow bits in place of cells ([`Batch::test_blocked`]: each lane
-//! works out what `Moved::unblocked` works out of a ball's new place, the
-//! same operations in the same order). Written
+//! known to have met a moved ball where it was go to a batch of their own,
+//! each lane with its pixel's shadow bits in place of cells, and are tested
+//! against the balls where they are ([`Batch::test_blocked`]). Written
 //! once over the lane build (`crate::simd`): AVX2 where the CPU has it, the
 //! portable build elsewhere; both find the pixels the one-by-one test
 //! (`Near::meets` of every segment and shape) finds.

@@ -69,7 +69,8 @@ impl Moved {
     /// shares the bit, [`Self::sure`], else where one of its segments comes
     /// near a moved object's old place, [`Self::was`]); when a shadow ray of it was
     /// blocked by a moved ball (its [`SHADOW`] bits) and that ray's flagged
-    /// segment may be blocked no more (`Self::unblocked`); or when its cells
+    /// segment may be blocked no more ([`Self::met_ball_before`],
+    /// [`Batch::test_blocked`]); or when its cells
     /// meet the moved ones or it lies in the row's [`Spans`], and (in a
     /// tracked record of a frame without a moved plane) one of its other
     /// segments near the moved shapes' box comes within a moved shape where
@@ -261,20 +262,15 @@ impl Moved {
             // shadow ray's blocker is a moved ball, and that ball where it
             // was met it: it blocked the ray when the pixel was traced, and
             // in each frame since that it moved, the ray passed well through
-            // it, or the pixel was traced again. Its new places alone then
-            // decide, eight rays at a time ([`Batch::test_blocked`]).
+            // it, or the pixel was traced again.
             let sole = shadow != 0 && rm.cells[k] & HITS & !self.sole == 0;
             for seg in rm.of(k) {
                 if seg.flagged() {
-                    if shadow == 0 {
-                        continue;
-                    }
-                    if !sole {
-                        if self.unblocked(seg, shadow) {
-                            hit.set(k);
-                            break;
-                        }
-                    } else if blocked.push(k as u32, shadow, seg) {
+                    // A blocked shadow ray that met a moved ball of the
+                    // pixel's where it was: their new places decide, eight
+                    // rays at a time ([`Batch::test_blocked`]).
+                    let met = shadow != 0 && (sole || self.met_ball_before(seg, shadow));
+                    if met && blocked.push(k as u32, shadow, seg) {
                         blocked.test_blocked(s, &self.balls, hit);
                         if hit.has(k) {
                             break;
@@ -306,43 +302,16 @@ impl Moved {
         (self.was.iter()).any(|(bit, n)| bit & met != 0 && n.meets(seg))
     }
 
-    /// Whether the blocked shadow ray of `seg` (flagged) may be blocked no
-    /// more: it meets a moved ball of the pixel's `shadow` bits where it was,
-    /// and passes well through none of them where they are (its nearest point
-    /// to the centre inside it and deeper than the pad, both ends outside the
-    /// ball and the pad). Only those balls: a pixel kept because its ray
-    /// passes through another ball would keep a record that names a blocker
-    /// no longer in the way, and miss that ball leaving later. The second test
-    /// is the one [`Batch::test_blocked`] works out in lanes.
-    fn unblocked(&self, seg: &Seg, shadow: Cells) -> bool {
-        let pad = Near::PAD;
-        let (p, q) = (seg.a, seg.b);
-        let d = q - p;
-        let d2 = d.length_squared();
-        let met = (self.balls.iter())
-            .any(|&(c0, _, r, bit)| bit & shadow != 0 && point_segment(c0, p, q) <= r + pad);
-        if !met {
-            return false;
-        }
-        for &(_, c1, r, bit) in &self.balls {
-            if bit & shadow == 0 {
-                continue;
-            }
-            let (w, v) = (c1 - p, c1 - q);
-            let wd = w.dot(d);
-            let c2 = w.cross(d).length_squared();
-            let (inner, outer) = (r - pad, r + pad);
-            let out2 = outer * outer * 1.001;
-            if c2 * 1.001 < inner * inner * d2
-                && 0.0 < wd
-                && wd < d2
-                && out2 < w.length_squared()
-                && out2 < v.length_squared()
-            {
-                return false;
-            }
-        }
-        true
+    /// Whether the blocked shadow ray of `seg` (flagged) meets a moved ball
+    /// of the pixel's `shadow` bits where it was: then it may be blocked no
+    /// more, unless it passes well through one of those balls where they are
+    /// ([`Batch::test_blocked`]). Only those balls: a pixel kept because its
+    /// ray passes through another ball would keep a record that names a
+    /// blocker no longer in the way, and miss that ball leaving later.
+    fn met_ball_before(&self, seg: &Seg, shadow: Cells) -> bool {
+        (self.balls.iter()).any(|&(c0, _, r, bit)| {
+            bit & shadow != 0 && point_segment(c0, seg.a, seg.b) <= r + Near::PAD
+        })
     }
 }
 
