@@ -147,6 +147,9 @@ pub(crate) trait Simd: Copy {
     /// Eight RGBA pixels of the linear colours `r`, `g`, `b`: the bytes of
     /// [`crate::color::rgba8_lanes`].
     fn rgba8(self, r: &[f32; 8], g: &[f32; 8], b: &[f32; 8]) -> [u32; 8];
+    /// Bit `i` set where `v[i] & with` is not zero (eight sets of bits, each
+    /// a `u128`, against one).
+    fn meeting(self, v: &[u128; 8], with: u128) -> u8;
     /// Asks the CPU to bring the cache line of `v` in (a hint: no effect on
     /// any value; the portable build does nothing).
     fn prefetch<T>(self, v: &T);

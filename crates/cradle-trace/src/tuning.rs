@@ -37,16 +37,17 @@ pub const SHARED: u32 = 2;
 /// 6 150M, never 159M; anti-aliased, 4 1M more than 5 and 6 0.5M fewer.
 pub const PACKET_AT_LEAST: usize = 6;
 
-/// The motion filter asks the CPU for the first segment of the pixel this
-/// many ahead of the one it reads (a hint: nothing else changes), so that a
-/// candidate's segments, far apart in a row's buffer and rarely cached, are
-/// on their way when it gets there. Chosen by time, which callgrind does not
-/// see (it counts 1.3% more instructions in the realistic cradle's
-/// incremental frame, 1.8% in the default swing's): medians of alternating
-/// pairs at 1200x600 on an AMD EPYC, the realistic cradle 0.960x-0.978x the
-/// frame's time without it on 2 threads and 0.966x on 1 (0.979x at 4 ahead,
-/// 0.968x at 16), the default swing 0.970x-0.985x.
-pub const PREFETCH_AHEAD: usize = 8;
+/// The motion filter finds a block's candidates this many blocks (of those
+/// holding one) before it reads them, and then asks the CPU for their first
+/// segments (a hint: nothing else changes), so that those segments, far apart
+/// in a row's buffer and rarely cached, are on their way when it gets there.
+/// Chosen by time, which callgrind does not see: medians of alternating pairs
+/// of `bench render --mode incremental` at 1200x600 on an AMD EPYC, 1 thread,
+/// against asking for the pixel eight ahead of each pixel walked: the
+/// realistic cradle 0.995x (12 pairs), the default swing 0.983x (16 pairs);
+/// at 1 block ahead the realistic cradle took 1.022x-1.026x, at 4 1.013x the
+/// time of 2.
+pub const BLOCKS_AHEAD: usize = 2;
 
 /// Blocks of a row's motion record per super-block: most blocks of a row meet
 /// no moved cell, and scanning them all read 2.4 kB a row (a third of the

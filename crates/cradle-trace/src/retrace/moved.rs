@@ -8,7 +8,7 @@ use crate::bits::BitRoom;
 use crate::motion::{BLOCK, RowMotion, SUPER};
 use crate::motion::{Batch, Cells, HITS, MET, Near, NearSet, SHADOW, Seg, point_segment};
 use crate::simd::{Build, Kernel, Simd};
-use crate::tuning::PREFETCH_AHEAD;
+use crate::tuning::BLOCKS_AHEAD;
 use glam::Vec3;
 
 /// What moved since the last frame: the cells of the moved objects, where they
@@ -136,34 +136,59 @@ impl Moved {
         let sure = if EDGES { &[] } else { self.spans.sure_row(y) };
         // The first run that ends after the pixel at hand (pixels ascend).
         let (mut r, mut sr) = (0, 0);
+        let cells_only = !rm.tracked() || self.coarse;
+        // The blocks whose candidates are read next, in a ring: the walk is
+        // `BLOCKS_AHEAD` blocks ahead of the reading (`planned` of them so
+        // far).
+        let (mut ahead, mut planned) = ([Plan::NONE; BLOCKS_AHEAD], 0);
         for (i, &c) in rm.supers.iter().enumerate() {
             let (b0, b1) = (i * SUPER, ((i + 1) * SUPER).min(rm.blocks.len()));
-            if !may_hold(
-                runs,
-                &mut r,
-                c & self.cells,
-                (b0 * BLOCK, (b1 * BLOCK).min(n)),
-            ) {
+            let xs = b0 * BLOCK..(b1 * BLOCK).min(n);
+            if !may_hold(runs, &mut r, c & self.cells, (xs.start, xs.end)) {
                 continue;
             }
-            for b in b0..b1 {
+            // The super-block's blocks whose cells meet the moved ones, and
+            // those a run meets.
+            let mut blocks = meeting(s, &rm.blocks[b0..b1], self.cells)
+                | run_bits::<BLOCK_SHIFT>(&runs[r..], &xs);
+            while blocks != 0 {
+                let b = b0 + blocks.trailing_zeros() as usize;
+                blocks &= blocks - 1;
                 let (x0, x1) = (b * BLOCK, ((b + 1) * BLOCK).min(n));
-                if !may_hold(runs, &mut r, rm.blocks[b] & self.cells, (x0, x1)) {
-                    continue;
-                }
                 // The block's pixels that hold a record: in the edge layer
                 // only its edges.
                 let held = if EDGES { flags(&is[x0..x1]) } else { u32::MAX };
                 if held == 0 {
                     continue;
                 }
-                self.block::<S, EDGES>(
-                    s,
-                    (rm, x0..x1, held),
-                    (runs, &mut r),
-                    (sure, &mut sr),
-                    (&mut batch, &mut hit),
-                );
+                while r < runs.len() && runs[r].1 as usize <= x0 {
+                    r += 1;
+                }
+                let plan =
+                    self.plan::<S, EDGES>(s, (rm, x0..x1, held), &runs[r..], (sure, &mut sr));
+                if plan.cands == 0 {
+                    continue;
+                }
+                // The candidates' segments are on their way while the
+                // blocks before are read.
+                if !cells_only {
+                    let mut m = plan.cands;
+                    while m != 0 {
+                        rm.prefetch(s, plan.x0 as usize + m.trailing_zeros() as usize);
+                        m &= m - 1;
+                    }
+                }
+                let first = std::mem::replace(&mut ahead[planned % BLOCKS_AHEAD], plan);
+                planned += 1;
+                if first.cands != 0 {
+                    self.block::<S, EDGES>(s, rm, first, (&mut batch, &mut hit));
+                }
+            }
+        }
+        for j in 0..BLOCKS_AHEAD {
+            let p = ahead[(planned + j) % BLOCKS_AHEAD];
+            if p.cands != 0 {
+                self.block::<S, EDGES>(s, rm, p, (&mut batch, &mut hit));
             }
         }
         batch.0.test(s, &self.near, &mut hit);
@@ -173,9 +198,45 @@ impl Moved {
     }
 
     /// The candidates among pixels `xs` of `rm` (a block; those of them whose
-    /// bit `k - xs.start` of `held` is set), their segments tested in
-    /// `batch`, the pixels met noted in `hit`; `r`: the first of `runs` that
-    /// ends after `xs.start`, kept so for the next block.
+    /// bit `k - xs.start` of `held` is set): those whose cells meet the moved
+    /// ones or that lie in one of `runs` (the first of them ends after
+    /// `xs.start`); `sr`: the first of `sure` that ends after `xs.start`
+    /// once moved on, kept so for the next block.
+    #[expect(
+        clippy::inline_always,
+        reason = "inlined into each build, so the AVX2 one compiles it for AVX2"
+    )]
+    #[inline(always)]
+    fn plan<S: Simd, const EDGES: bool>(
+        &self,
+        s: S,
+        (rm, xs, held): (&RowMotion, std::ops::Range<usize>, u32),
+        runs: &[(u32, u32)],
+        (sure, sr): (&[(u32, u32)], &mut usize),
+    ) -> Plan {
+        // The block's pixels in a run, where any moved shape may meet a free
+        // segment.
+        let in_runs = run_bits::<0>(runs, &xs);
+        // Those in a sure run (none in the edge layer).
+        let in_sure = if EDGES {
+            0
+        } else {
+            while *sr < sure.len() && sure[*sr].1 as usize <= xs.start {
+                *sr += 1;
+            }
+            run_bits::<0>(&sure[*sr..], &xs)
+        };
+        let cands = (meeting(s, &rm.cells[xs.clone()], self.cells) | in_runs) & held;
+        Plan {
+            x0: xs.start as u32,
+            cands: cands as u8,
+            in_runs: in_runs as u8,
+            in_sure: in_sure as u8,
+        }
+    }
+
+    /// Reads the candidates of `plan` (a block of `rm`): their segments
+    /// tested in `batch`, the pixels met noted in `hit`.
     #[expect(
         clippy::inline_always,
         reason = "inlined into each build, so the AVX2 one compiles it for AVX2"
@@ -184,44 +245,23 @@ impl Moved {
     fn block<S: Simd, const EDGES: bool>(
         &self,
         s: S,
-        (rm, xs, held): (&RowMotion, std::ops::Range<usize>, u32),
-        (runs, r): (&[(u32, u32)], &mut usize),
-        (sure, sr): (&[(u32, u32)], &mut usize),
+        rm: &RowMotion,
+        plan: Plan,
         ((batch, blocked), hit): (&mut (Batch, Batch), &mut crate::bits::RowBits<'_>),
     ) {
         let cells_only = !rm.tracked() || self.coarse;
-        // Whether a pixel of the block met a moved object (hit bits): where
-        // none did, a pixel in a run need not read its cells.
-        let hits = rm.blocks[xs.start / BLOCK] & self.cells & HITS != 0;
-        // The block's pixels in a run, where any moved shape may meet a free
-        // segment (`r`, moved on by `may_hold`, is the first run that ends
-        // after the block's first pixel).
-        let in_runs = run_bits(&runs[*r..], &xs);
-        // Those in a sure run (none in the edge layer).
-        let in_sure = if EDGES {
-            0
-        } else {
-            while *sr < sure.len() && sure[*sr].1 as usize <= xs.start {
-                *sr += 1;
-            }
-            run_bits(&sure[*sr..], &xs)
-        };
-        for k in xs.clone() {
-            let bit = k - xs.start;
-            if EDGES && held >> bit & 1 == 0 {
-                continue;
-            }
-            // The segments of a pixel further on, on their way (every pixel
-            // of the block: the candidates among them are not known yet).
-            if !cells_only {
-                rm.prefetch(s, k + PREFETCH_AHEAD);
-            }
+        let Plan {
+            x0,
+            mut cands,
+            in_runs,
+            in_sure,
+        } = plan;
+        while cands != 0 {
+            let bit = cands.trailing_zeros() as usize;
+            cands &= cands - 1;
+            let k = x0 as usize + bit;
             let in_run = in_runs >> bit & 1 != 0;
-            let own = if in_run && !hits {
-                0
-            } else {
-                rm.cells[k] & self.cells
-            };
+            let own = rm.cells[k] & self.cells;
             // The moved balls (or those sharing their bits) that blocked a
             // shadow ray of the pixel.
             let mut shadow = 0;
@@ -315,6 +355,28 @@ impl Moved {
     }
 }
 
+/// A block's candidates for [`Moved::block`], found by [`Moved::plan`].
+#[derive(Debug, Clone, Copy)]
+struct Plan {
+    /// The block's first pixel.
+    x0: u32,
+    /// Bit `k - x0` for each candidate pixel `k` (none: no block).
+    cands: u8,
+    /// The pixels in a run, and in a sure run.
+    in_runs: u8,
+    in_sure: u8,
+}
+
+impl Plan {
+    /// No block.
+    const NONE: Self = Self {
+        x0: 0,
+        cands: 0,
+        in_runs: 0,
+        in_sure: 0,
+    };
+}
+
 /// Whether pixels `x0..x1`, whose cells meeting the moved ones are `met`, may
 /// hold a candidate: `met` is not empty or a run meets them (`r`: the first of
 /// `runs` that ends after the last pixels asked about, ascending; moved on to
@@ -331,24 +393,44 @@ fn may_hold(runs: &[(u32, u32)], r: &mut usize, met: Cells, (x0, x1): (usize, us
     met != 0 || runs.get(*r).is_some_and(|run| (run.0 as usize) < x1)
 }
 
-// `flags` and `low_bits` hold a block in the low bits of a `u32`, its flags
-// in one `u64`.
-const _: () = assert!(BLOCK == 8);
+// `flags`, `meeting` and `low_bits` hold a block (or a super-block's blocks)
+// in the low bits of a `u32`, a block's flags in one `u64`.
+const _: () = assert!(BLOCK == 1 << BLOCK_SHIFT && SUPER == 8);
+/// `BLOCK` as a shift.
+const BLOCK_SHIFT: u32 = 3;
 
-/// The pixels of block `xs` that `runs` (ascending, apart; the first ending
-/// after `xs.start`) hold: bit `k - xs.start` for pixel `k`.
+/// The units of `1 << SHIFT` pixels of `xs` (at most eight units, from
+/// `xs.start`) that `runs` (ascending, apart; the first ending after
+/// `xs.start`) meet: bit `i` for the unit from `xs.start + (i << SHIFT)`.
 #[inline(always)]
 #[expect(
     clippy::inline_always,
     reason = "a few compares, inlined into each build"
 )]
-fn run_bits(runs: &[(u32, u32)], xs: &std::ops::Range<usize>) -> u32 {
+fn run_bits<const SHIFT: u32>(runs: &[(u32, u32)], xs: &std::ops::Range<usize>) -> u32 {
     (runs.iter())
         .take_while(|run| (run.0 as usize) < xs.end)
         .fold(0, |m, &(a, b)| {
             let (a, b) = ((a as usize).max(xs.start), (b as usize).min(xs.end));
-            m | (low_bits(b - xs.start) & !low_bits(a - xs.start))
+            let (a, b) = (a - xs.start, b - xs.start);
+            m | (low_bits((b + (1 << SHIFT) - 1) >> SHIFT) & !low_bits(a >> SHIFT))
         })
+}
+
+/// Bit `i` set where `cells[i] & with` is not zero (at most eight sets):
+/// eight at a time in lane build `s`.
+#[inline(always)]
+#[expect(
+    clippy::inline_always,
+    reason = "a few instructions, inlined into each build"
+)]
+fn meeting<S: Simd>(s: S, cells: &[Cells], with: Cells) -> u32 {
+    match <&[Cells; 8]>::try_from(cells) {
+        Ok(eight) => u32::from(s.meeting(eight, with)),
+        Err(_) => {
+            (cells.iter().enumerate()).fold(0, |m, (i, &c)| m | u32::from(c & with != 0) << i)
+        }
+    }
 }
 
 /// The bits below bit `n` (`n` at most [`BLOCK`]).
@@ -404,9 +486,10 @@ impl Kernel for Dirty<'_> {
 
 #[cfg(test)]
 mod tests {
-    use super::{Layer, Moved};
+    use super::{Layer, Moved, meeting, run_bits};
     use crate::motion::{Cells, Near, NearSet, RowMotion, Seg};
     use crate::scene::Shape;
+    use crate::simd::{Build, Kernel, Simd};
     use glam::Vec3;
 
     /// The hit bit of the moving object of rank `r` (`moving_bits`).
@@ -559,5 +642,52 @@ mod tests {
         still.sole = shadow;
         let rm = row(&[(shadow, vec![shadow_through_origin()])]);
         assert!(taken(&still, &rm).is_empty());
+    }
+
+    /// A set meets another where they share a bit, in the low half, the
+    /// high half or both, in every lane build, eight at a time and in a
+    /// shorter last chunk.
+    #[test]
+    fn sets_of_cells_meet_where_they_share_a_bit() {
+        struct Meet<'a>(&'a [Cells], Cells);
+        impl Kernel for Meet<'_> {
+            type Output = u32;
+            fn run<S: Simd>(self, s: S) -> u32 {
+                meeting(s, self.0, self.1)
+            }
+        }
+        let with: Cells = 1 << 3 | 1 << 70;
+        let sets: [Cells; 8] = [
+            0,
+            1 << 3,
+            1 << 70,
+            1 << 4 | 1 << 71,
+            Cells::MAX,
+            1 << 64,
+            1 << 3 | 1 << 70,
+            !with,
+        ];
+        for build in Build::all() {
+            assert_eq!(build.run(Meet(&sets, with)), 0b0101_0110, "{build:?}");
+            assert_eq!(build.run(Meet(&sets[..5], with)), 0b1_0110, "{build:?}");
+            assert_eq!(build.run(Meet(&sets, 0)), 0, "{build:?}");
+        }
+    }
+
+    /// Runs mark the pixels they hold, and the blocks of eight they touch,
+    /// from the block's or super-block's first pixel, clipped to it (the
+    /// runs given start with the first that ends after that pixel).
+    #[test]
+    fn runs_mark_the_pixels_and_blocks_they_touch() {
+        let runs = [(3, 5), (7, 9), (12, 30)];
+        assert_eq!(run_bits::<0>(&runs, &(0..8)), 0b1001_1000);
+        assert_eq!(run_bits::<0>(&runs[1..], &(8..16)), 0b1111_0001);
+        // A last block of four pixels.
+        assert_eq!(run_bits::<0>(&runs[2..], &(24..28)), 0b1111);
+        // Blocks of eight from pixel 0: 3..5 and 7..9 touch blocks 0 and 1,
+        // 12..30 blocks 1 to 3; nothing touches block 4.
+        assert_eq!(run_bits::<3>(&runs, &(0..64)), 0b1111);
+        assert_eq!(run_bits::<3>(&[(40, 41)], &(0..64)), 0b10_0000);
+        assert_eq!(run_bits::<3>(&[(64, 70)], &(0..64)), 0);
     }
 }

@@ -17,11 +17,12 @@
 use super::{Kernel, Simd};
 use crate::color::{BUCKET_SHIFT, FIRST_BUCKET, IN_BUCKET, srgb_entries};
 use std::arch::x86_64::{
-    __m256, __m256i, _CMP_LE_OQ, _CMP_LT_OQ, _MM_HINT_T0, _mm_prefetch, _mm256_add_epi32,
-    _mm256_add_ps, _mm256_and_ps, _mm256_and_si256, _mm256_andnot_ps, _mm256_blendv_ps,
-    _mm256_castps_si256, _mm256_castsi256_ps, _mm256_cmp_ps, _mm256_cmpeq_epi32,
-    _mm256_cmpgt_epi32, _mm256_cvttps_epi32, _mm256_div_ps, _mm256_floor_ps,
-    _mm256_i32gather_epi32, _mm256_loadu_ps, _mm256_max_epi32, _mm256_max_ps, _mm256_min_ps,
+    __m256, __m256i, _CMP_LE_OQ, _CMP_LT_OQ, _MM_HINT_T0, _mm_loadu_si128, _mm_prefetch,
+    _mm256_add_epi32, _mm256_add_ps, _mm256_and_ps, _mm256_and_si256, _mm256_andnot_ps,
+    _mm256_blendv_ps, _mm256_broadcastsi128_si256, _mm256_castps_si256, _mm256_castsi256_pd,
+    _mm256_castsi256_ps, _mm256_cmp_ps, _mm256_cmpeq_epi32, _mm256_cmpeq_epi64, _mm256_cmpgt_epi32,
+    _mm256_cvttps_epi32, _mm256_div_ps, _mm256_floor_ps, _mm256_i32gather_epi32, _mm256_loadu_ps,
+    _mm256_loadu_si256, _mm256_max_epi32, _mm256_max_ps, _mm256_min_ps, _mm256_movemask_pd,
     _mm256_movemask_ps, _mm256_mul_ps, _mm256_or_ps, _mm256_or_si256, _mm256_set1_epi32,
     _mm256_set1_ps, _mm256_setr_epi32, _mm256_setzero_ps, _mm256_setzero_si256, _mm256_slli_epi32,
     _mm256_sqrt_ps, _mm256_srli_epi32, _mm256_storeu_ps, _mm256_storeu_si256, _mm256_sub_epi32,
@@ -180,6 +181,27 @@ impl Simd for Avx2 {
         // SAFETY: the token proves AVX2 (and so SSE); a prefetch reads
         // nothing the program sees and never faults.
         unsafe { _mm_prefetch::<_MM_HINT_T0>(std::ptr::from_ref(v).cast()) }
+    }
+    #[inline(always)]
+    fn meeting(self, v: &[u128; 8], with: u128) -> u8 {
+        // SAFETY: the token proves AVX2; the loads read the 16 bytes of
+        // `with` and, four times, 32 bytes of `v`'s 128.
+        let zero = unsafe {
+            let w = _mm256_broadcastsi128_si256(_mm_loadu_si128(std::ptr::from_ref(&with).cast()));
+            let half = |j: usize| {
+                let x = _mm256_loadu_si256(v.as_ptr().add(2 * j).cast());
+                let z = _mm256_cmpeq_epi64(_mm256_and_si256(x, w), _mm256_setzero_si256());
+                _mm256_movemask_pd(_mm256_castsi256_pd(z)) as u32
+            };
+            half(0) | half(1) << 4 | half(2) << 8 | half(3) << 12
+        };
+        // Bit 2i and 2i+1: the low and high halves of `v[i] & with` are
+        // zero; a set is empty where both are.
+        let mut m = !(zero & zero >> 1) & 0x5555;
+        m = (m | m >> 1) & 0x3333;
+        m = (m | m >> 2) & 0x0F0F;
+        m = (m | m >> 4) & 0x00FF;
+        m as u8
     }
     #[inline]
     fn enter<K: Kernel>(self, k: K) -> K::Output {

@@ -172,6 +172,10 @@ impl Simd for Portable {
     #[inline(always)]
     fn prefetch<T>(self, _: &T) {}
     #[inline(always)]
+    fn meeting(self, v: &[u128; 8], with: u128) -> u8 {
+        (v.iter().enumerate()).fold(0, |m, (i, &c)| m | u8::from(c & with != 0) << i)
+    }
+    #[inline(always)]
     fn select(m: Bits, a: P8, b: P8) -> P8 {
         let mut out = b.0;
         for (i, (o, a)) in out.iter_mut().zip(a.0).enumerate() {
