@@ -141,47 +141,55 @@ impl Moved {
         // `BLOCKS_AHEAD` blocks ahead of the reading (`planned` of them so
         // far).
         let (mut ahead, mut planned) = ([Plan::NONE; BLOCKS_AHEAD], 0);
-        for (i, &c) in rm.supers.iter().enumerate() {
-            let (b0, b1) = (i * SUPER, ((i + 1) * SUPER).min(rm.blocks.len()));
-            let xs = b0 * BLOCK..(b1 * BLOCK).min(n);
-            if !may_hold(runs, &mut r, c & self.cells, (xs.start, xs.end)) {
-                continue;
-            }
-            // The super-block's blocks whose cells meet the moved ones, and
-            // those a run meets.
-            let mut blocks = meeting(s, &rm.blocks[b0..b1], self.cells)
-                | run_bits::<BLOCK_SHIFT>(&runs[r..], &xs);
-            while blocks != 0 {
-                let b = b0 + blocks.trailing_zeros() as usize;
-                blocks &= blocks - 1;
-                let (x0, x1) = (b * BLOCK, ((b + 1) * BLOCK).min(n));
-                // The block's pixels that hold a record: in the edge layer
-                // only its edges.
-                let held = if EDGES { flags(&is[x0..x1]) } else { u32::MAX };
-                if held == 0 {
-                    continue;
-                }
-                while r < runs.len() && runs[r].1 as usize <= x0 {
-                    r += 1;
-                }
-                let plan =
-                    self.plan::<S, EDGES>(s, (rm, x0..x1, held), &runs[r..], (sure, &mut sr));
-                if plan.cands == 0 {
-                    continue;
-                }
-                // The candidates' segments are on their way while the
-                // blocks before are read.
-                if !cells_only {
-                    let mut m = plan.cands;
-                    while m != 0 {
-                        rm.prefetch(s, plan.x0 as usize + m.trailing_zeros() as usize);
-                        m &= m - 1;
+        // Eight super-blocks at a time: those whose cells meet the moved ones
+        // or that a run touches.
+        for (g, eight) in rm.supers.chunks(SUPER).enumerate() {
+            let s0 = g * SUPER;
+            let x0 = s0 * SUPER * BLOCK;
+            skip_ended(runs, &mut r, x0);
+            let pixels = x0..(x0 + SUPER * SUPER * BLOCK).min(n);
+            let mut supers =
+                meeting(s, eight, self.cells) | run_bits::<SUPER_SHIFT>(&runs[r..], &pixels);
+            while supers != 0 {
+                let i = s0 + supers.trailing_zeros() as usize;
+                supers &= supers - 1;
+                let (b0, b1) = (i * SUPER, ((i + 1) * SUPER).min(rm.blocks.len()));
+                let xs = b0 * BLOCK..(b1 * BLOCK).min(n);
+                skip_ended(runs, &mut r, xs.start);
+                // The super-block's blocks whose cells meet the moved ones, and
+                // those a run meets.
+                let mut blocks = meeting(s, &rm.blocks[b0..b1], self.cells)
+                    | run_bits::<BLOCK_SHIFT>(&runs[r..], &xs);
+                while blocks != 0 {
+                    let b = b0 + blocks.trailing_zeros() as usize;
+                    blocks &= blocks - 1;
+                    let (x0, x1) = (b * BLOCK, ((b + 1) * BLOCK).min(n));
+                    // The block's pixels that hold a record: in the edge layer
+                    // only its edges.
+                    let held = if EDGES { flags(&is[x0..x1]) } else { u32::MAX };
+                    if held == 0 {
+                        continue;
                     }
-                }
-                let first = std::mem::replace(&mut ahead[planned % BLOCKS_AHEAD], plan);
-                planned += 1;
-                if first.cands != 0 {
-                    self.block::<S, EDGES>(s, rm, first, (&mut batch, &mut hit));
+                    skip_ended(runs, &mut r, x0);
+                    let plan =
+                        self.plan::<S, EDGES>(s, (rm, x0..x1, held), &runs[r..], (sure, &mut sr));
+                    if plan.cands == 0 {
+                        continue;
+                    }
+                    // The candidates' segments are on their way while the
+                    // blocks before are read.
+                    if !cells_only {
+                        let mut m = plan.cands;
+                        while m != 0 {
+                            rm.prefetch(s, plan.x0 as usize + m.trailing_zeros() as usize);
+                            m &= m - 1;
+                        }
+                    }
+                    let first = std::mem::replace(&mut ahead[planned % BLOCKS_AHEAD], plan);
+                    planned += 1;
+                    if first.cands != 0 {
+                        self.block::<S, EDGES>(s, rm, first, (&mut batch, &mut hit));
+                    }
                 }
             }
         }
@@ -221,9 +229,7 @@ impl Moved {
         let in_sure = if EDGES {
             0
         } else {
-            while *sr < sure.len() && sure[*sr].1 as usize <= xs.start {
-                *sr += 1;
-            }
+            skip_ended(sure, sr, xs.start);
             run_bits::<0>(&sure[*sr..], &xs)
         };
         let cands = (meeting(s, &rm.cells[xs.clone()], self.cells) | in_runs) & held;
@@ -377,27 +383,24 @@ impl Plan {
     };
 }
 
-/// Whether pixels `x0..x1`, whose cells meeting the moved ones are `met`, may
-/// hold a candidate: `met` is not empty or a run meets them (`r`: the first of
-/// `runs` that ends after the last pixels asked about, ascending; moved on to
-/// the first that ends after `x0`).
+// `flags`, `meeting` and `low_bits` hold a block (or a super-block's blocks)
+// in the low bits of a `u32`, a block's flags in one `u64`.
+const _: () = assert!(BLOCK == 1 << BLOCK_SHIFT && SUPER == 8 && SUPER * BLOCK == 1 << SUPER_SHIFT);
+/// `BLOCK` as a shift, and the pixels of a super-block.
+const BLOCK_SHIFT: u32 = 3;
+const SUPER_SHIFT: u32 = 6;
+
+/// Moves `r` on to the first of `runs` (ascending) that ends after pixel `x`.
 #[inline(always)]
 #[expect(
     clippy::inline_always,
     reason = "a few compares, inlined into each build"
 )]
-fn may_hold(runs: &[(u32, u32)], r: &mut usize, met: Cells, (x0, x1): (usize, usize)) -> bool {
-    while *r < runs.len() && runs[*r].1 as usize <= x0 {
+fn skip_ended(runs: &[(u32, u32)], r: &mut usize, x: usize) {
+    while *r < runs.len() && runs[*r].1 as usize <= x {
         *r += 1;
     }
-    met != 0 || runs.get(*r).is_some_and(|run| (run.0 as usize) < x1)
 }
-
-// `flags`, `meeting` and `low_bits` hold a block (or a super-block's blocks)
-// in the low bits of a `u32`, a block's flags in one `u64`.
-const _: () = assert!(BLOCK == 1 << BLOCK_SHIFT && SUPER == 8);
-/// `BLOCK` as a shift.
-const BLOCK_SHIFT: u32 = 3;
 
 /// The units of `1 << SHIFT` pixels of `xs` (at most eight units, from
 /// `xs.start`) that `runs` (ascending, apart; the first ending after
