@@ -150,9 +150,10 @@ pub(crate) trait Simd: Copy {
     /// Bit `i` set where `v[i] & with` is not zero (eight sets of bits, each
     /// a `u128`, against one).
     fn meeting(self, v: &[u128; 8], with: u128) -> u8;
-    /// Asks the CPU to bring the cache line of `v` in (a hint: no effect on
-    /// any value; the portable build does nothing).
-    fn prefetch<T>(self, v: &T);
+    /// Asks the CPU to bring the cache line at `v` in (a hint: no effect on
+    /// any value, and no fault wherever `v` points, so it need not point into
+    /// anything; the portable build does nothing).
+    fn prefetch<T>(self, v: *const T);
     /// Runs `k` in this build: compiled for AVX2 in the AVX2 build (the one
     /// entry from code built for any x86-64 into code built for AVX2), inlined
     /// in the portable one.

@@ -125,20 +125,24 @@ impl RowMotion {
         }
     }
 
-    /// Asks the CPU, in lane build `s`, for pixel `k`'s first segment (none
-    /// past the row or its segments): a hint, for a reader about to get there.
+    /// Asks the CPU, in lane build `s`, for the first segment of pixel
+    /// `x0 + i` for each bit `i` of `which` (none past the row): a hint, for
+    /// a reader about to get there.
     #[expect(
         clippy::inline_always,
         reason = "inlined into the filter's build, so the AVX2 one prefetches"
     )]
     #[inline(always)]
-    pub(crate) fn prefetch<S: Simd>(&self, s: S, k: usize) {
-        if let Some(seg) = self
-            .span
-            .get(k)
-            .and_then(|&[a, _]| self.segs.get(a as usize))
-        {
-            s.prefetch(seg);
+    pub(crate) fn prefetch<S: Simd>(&self, s: S, x0: usize, which: u8) {
+        let span = self.span.get(x0..).unwrap_or_default();
+        let mut m = which;
+        while m != 0 {
+            if let Some(&[a, _]) = span.get(m.trailing_zeros() as usize) {
+                // (A hint at any address: one past the buffer's end, for a
+                // pixel with no segments there, is asked for harmlessly.)
+                s.prefetch(self.segs.as_ptr().wrapping_add(a as usize));
+            }
+            m &= m - 1;
         }
     }
 

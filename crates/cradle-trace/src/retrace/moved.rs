@@ -179,11 +179,7 @@ impl Moved {
                     // The candidates' segments are on their way while the
                     // blocks before are read.
                     if !cells_only {
-                        let mut m = plan.cands;
-                        while m != 0 {
-                            rm.prefetch(s, plan.x0 as usize + m.trailing_zeros() as usize);
-                            m &= m - 1;
-                        }
+                        rm.prefetch(s, x0, plan.cands);
                     }
                     let first = std::mem::replace(&mut ahead[planned % BLOCKS_AHEAD], plan);
                     planned += 1;
@@ -436,7 +432,7 @@ fn meeting<S: Simd>(s: S, cells: &[Cells], with: Cells) -> u32 {
     }
 }
 
-/// The bits below bit `n` (`n` at most [`BLOCK`]).
+/// The bits below bit `n` (`n` at most eight).
 #[inline(always)]
 #[expect(clippy::inline_always, reason = "a shift, inlined into each build")]
 fn low_bits(n: usize) -> u32 {

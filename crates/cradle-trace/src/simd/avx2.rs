@@ -177,10 +177,10 @@ impl Simd for Avx2 {
         A8(unsafe { _mm256_blendv_ps(b.0, a.0, m.0) })
     }
     #[inline(always)]
-    fn prefetch<T>(self, v: &T) {
+    fn prefetch<T>(self, v: *const T) {
         // SAFETY: the token proves AVX2 (and so SSE); a prefetch reads
-        // nothing the program sees and never faults.
-        unsafe { _mm_prefetch::<_MM_HINT_T0>(std::ptr::from_ref(v).cast()) }
+        // nothing the program sees and never faults, whatever the address.
+        unsafe { _mm_prefetch::<_MM_HINT_T0>(v.cast()) }
     }
     #[inline(always)]
     fn meeting(self, v: &[u128; 8], with: u128) -> u8 {

@@ -170,7 +170,7 @@ impl Simd for Portable {
         k.run(self)
     }
     #[inline(always)]
-    fn prefetch<T>(self, _: &T) {}
+    fn prefetch<T>(self, _: *const T) {}
     #[inline(always)]
     fn meeting(self, v: &[u128; 8], with: u128) -> u8 {
         (v.iter().enumerate()).fold(0, |m, (i, &c)| m | u8::from(c & with != 0) << i)
