@@ -38,15 +38,17 @@ pub const SHARED: u32 = 2;
 pub const PACKET_AT_LEAST: usize = 6;
 
 /// The motion filter finds a block's candidates this many blocks (of those
-/// holding one) before it reads them, and then asks the CPU for their first
-/// segments (a hint: nothing else changes), so that those segments, far apart
-/// in a row's buffer and rarely cached, are on their way when it gets there.
-/// Chosen by time, which callgrind does not see: medians of alternating pairs
-/// of `bench render --mode incremental` at 1200x600 on an AMD EPYC, 1 thread,
-/// against asking for the pixel eight ahead of each pixel walked: the
-/// realistic cradle 0.995x (12 pairs), the default swing 0.983x (16 pairs);
-/// at 1 block ahead the realistic cradle took 1.022x-1.026x, at 4 1.013x the
-/// time of 2.
+/// holding one) before it reads them, and then asks the CPU for the first
+/// segment of each of the block's pixels (a hint: nothing else changes), so
+/// that those segments, far apart in a row's buffer and rarely cached, are on
+/// their way when it gets there. Chosen by time, which callgrind does not
+/// see: medians of alternating pairs of `bench render --mode incremental` at
+/// 1200x600 on an AMD EPYC, 1 thread, against asking for the pixel eight
+/// ahead of each pixel walked: the realistic cradle 0.994x, the default
+/// swing 0.959x (10 pairs each). Asking at 1 block ahead took 1.02x-1.03x
+/// the time of 2 (realistic), at 4 1.01x; asking for the candidates' segments
+/// alone, not the block's, 1.02x: a candidate's segments often reach past
+/// their first cache line into the next pixel's.
 pub const BLOCKS_AHEAD: usize = 2;
 
 /// Blocks of a row's motion record per super-block: most blocks of a row meet

@@ -125,24 +125,22 @@ impl RowMotion {
         }
     }
 
-    /// Asks the CPU, in lane build `s`, for the first segment of pixel
-    /// `x0 + i` for each bit `i` of `which` (none past the row): a hint, for
-    /// a reader about to get there.
+    /// Asks the CPU, in lane build `s`, for the first segment of each pixel
+    /// of the block from pixel `x0` (none past the row): a hint, for a reader
+    /// about to get there.
     #[expect(
         clippy::inline_always,
         reason = "inlined into the filter's build, so the AVX2 one prefetches"
     )]
     #[inline(always)]
-    pub(crate) fn prefetch<S: Simd>(&self, s: S, x0: usize, which: u8) {
+    pub(crate) fn prefetch<S: Simd>(&self, s: S, x0: usize) {
         let span = self.span.get(x0..).unwrap_or_default();
-        let mut m = which;
-        while m != 0 {
-            if let Some(&[a, _]) = span.get(m.trailing_zeros() as usize) {
+        for i in 0..BLOCK {
+            if let Some(&[a, _]) = span.get(i) {
                 // (A hint at any address: one past the buffer's end, for a
                 // pixel with no segments there, is asked for harmlessly.)
                 s.prefetch(self.segs.as_ptr().wrapping_add(a as usize));
             }
-            m &= m - 1;
         }
     }
 

@@ -176,10 +176,13 @@ impl Moved {
                     if plan.cands == 0 {
                         continue;
                     }
-                    // The candidates' segments are on their way while the
-                    // blocks before are read.
+                    // The block's segments are on their way while the blocks
+                    // before are read (every pixel's: the segments of a
+                    // pixel and of the next lie side by side, so a
+                    // candidate's that reach past its first cache line come
+                    // too).
                     if !cells_only {
-                        rm.prefetch(s, x0, plan.cands);
+                        rm.prefetch(s, x0);
                     }
                     let first = std::mem::replace(&mut ahead[planned % BLOCKS_AHEAD], plan);
                     planned += 1;
