@@ -119,12 +119,13 @@ impl MotionGrid {
         if near > far || far.is_nan() {
             return None;
         }
-        let mut a = ray.at(near);
+        // The last bits of `a.x` and `b.x` are the flags ([`Seg::flagged`],
+        // [`Seg::free`]), cleared: a unit in the last place, far within
+        // `Near::PAD`.
+        let (mut a, mut b) = (ray.at(near), ray.at(far.min(f32::MAX)));
         a.x = f32::from_bits(a.x.to_bits() & !1);
-        Some(Seg {
-            a,
-            b: ray.at(far.min(f32::MAX)),
-        })
+        b.x = f32::from_bits(b.x.to_bits() & !1);
+        Some(Seg { a, b })
     }
 }
 
@@ -247,6 +248,20 @@ impl Seg {
     pub fn flag(&mut self) {
         self.a.x = f32::from_bits(self.a.x.to_bits() | 1);
     }
+
+    /// Whether it is a free segment's ([`Record::segment`]: it left no
+    /// cells; the last bit of `b.x`).
+    #[must_use]
+    #[inline]
+    pub fn free(&self) -> bool {
+        self.b.x.to_bits() & 1 == 1
+    }
+
+    /// Marks it free ([`Self::free`]).
+    #[inline]
+    pub fn set_free(&mut self) {
+        self.b.x = f32::from_bits(self.b.x.to_bits() | 1);
+    }
 }
 
 /// Where the scalar path notes each ray's segment for incremental frames: it
@@ -330,8 +345,10 @@ impl Record for Motion {
             return;
         };
         self.last = None;
-        if let Some(s) = g.clip(ray, t_max) {
-            if !free {
+        if let Some(mut s) = g.clip(ray, t_max) {
+            if free {
+                s.set_free();
+            } else {
                 self.mask |= g.cells(s.a.min(s.b), s.a.max(s.b));
             }
             self.last = Some(self.segs.len());
@@ -452,6 +469,21 @@ mod tests {
                 );
             }
         }
+    }
+
+    #[test]
+    fn a_free_ray_leaves_its_segment_marked_and_no_cells() {
+        let mut m = Motion::new(Some(grid()));
+        let ray = Ray {
+            origin: Vec3::new(0.0, 0.05, 0.0),
+            dir: Vec3::X,
+        };
+        m.segment(&ray, 0.2, true);
+        assert_eq!(m.mask, 0);
+        m.segment(&ray, 0.2, false);
+        assert_ne!(m.mask, 0);
+        assert!(m.segs[0].free() && !m.segs[0].flagged());
+        assert!(!m.segs[1].free() && !m.segs[1].flagged());
     }
 
     #[test]

@@ -238,10 +238,12 @@ impl LaneNotes {
                 origin: o.lane(i),
                 dir: d.lane(i),
             };
-            if let Some(seg) = MotionGrid::clip_slabs(&ray, (lo.lane(i), hi.lane(i)), t[i]) {
+            if let Some(mut seg) = MotionGrid::clip_slabs(&ray, (lo.lane(i), hi.lane(i)), t[i]) {
                 if free >> i & 1 == 0 {
                     let m = &marks[i];
                     m.set(m.get() | g.cells(seg.a.min(seg.b), seg.a.max(seg.b)));
+                } else {
+                    seg.set_free();
                 }
                 last[i] = segs[i].len() as u32;
                 segs[i].push(seg);

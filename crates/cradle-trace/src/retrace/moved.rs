@@ -309,7 +309,22 @@ impl Moved {
             // in each frame since that it moved, the ray passed well through
             // it, or the pixel was traced again.
             let sole = shadow != 0 && rm.cells[k] & HITS & !self.sole == 0;
-            for seg in rm.of(k) {
+            // A pixel's free segments come first (its camera ray's, then
+            // those of a camera ray that met a plane), and meet a moved
+            // shape only in the row's runs ([`Spans`]): out of them, they
+            // are not read, up to the first with a flag (a blocked shadow
+            // ray's, which its blocker's moving away changes wherever the
+            // pixel lies).
+            let mut segs = rm.of(k);
+            if !in_run {
+                while let [first, rest @ ..] = segs
+                    && first.free()
+                    && !first.flagged()
+                {
+                    segs = rest;
+                }
+            }
+            for seg in segs {
                 if seg.flagged() {
                     // A blocked shadow ray that met a moved ball of the
                     // pixel's where it was: their new places decide, eight
@@ -644,6 +659,65 @@ mod tests {
         still.sole = shadow;
         let rm = row(&[(shadow, vec![shadow_through_origin()])]);
         assert!(taken(&still, &rm).is_empty());
+    }
+
+    #[test]
+    fn a_free_segment_is_read_only_in_the_runs_unless_it_is_flagged() {
+        use crate::retrace::Spans;
+        // The ball now at the origin, in grid cell 0.
+        let ball = Shape::Sphere {
+            centre: Vec3::ZERO,
+            radius: 0.02,
+        };
+        let near = Near::of(&ball).unwrap();
+        let mut moved = Moved {
+            cells: 1,
+            near: NearSet::new(vec![(1, near)]),
+            lo: near.lo(),
+            hi: near.hi(),
+            ..Moved::default()
+        };
+        // Along z through the centre, and 10 cm aside.
+        let mut through = Seg {
+            a: Vec3::new(0.0, 0.0, -0.1),
+            b: Vec3::new(0.0, 0.0, 0.1),
+        };
+        let mut aside = through;
+        aside.a.x += 0.1;
+        aside.b.x += 0.1;
+        let (mut free_through, mut free_aside) = (through, aside);
+        free_through.set_free();
+        free_aside.set_free();
+        assert!(free_through.free() && !through.free());
+        // A free segment through the ball out of the runs, the same in the
+        // run, and a free segment aside before one with cells through it.
+        let rm = row(&[
+            (1, vec![free_through, aside]),
+            (1, vec![free_through, aside]),
+            (1, vec![free_aside, through]),
+        ]);
+        moved.spans = Spans::of_runs(vec![(0, 1, 2)], 1);
+        assert_eq!(taken(&moved, &rm), [1, 2]);
+        // A blocked shadow ray from a plane (free, flagged) is read wherever
+        // the pixel lies: the ball that blocked it moved away.
+        let mut blocked = shadow_through_origin();
+        blocked.set_free();
+        let away = ball_moved(Vec3::ZERO, Vec3::new(0.1, 0.0, 0.0));
+        let rm = row(&[(met(0) << 32 | 1, vec![blocked])]);
+        assert_eq!(taken(&away, &rm), [0]);
+        // Cleared by the clip that makes a segment, as its other flag is.
+        through.flag();
+        through.set_free();
+        let grid = crate::motion::MotionGrid::new(crate::geometry::Aabb {
+            min: Vec3::splat(-1.0),
+            max: Vec3::splat(1.0),
+        });
+        let ray = crate::geometry::Ray {
+            origin: through.a,
+            dir: Vec3::Z,
+        };
+        let clipped = grid.clip(&ray, 0.2).unwrap();
+        assert!(!clipped.free() && !clipped.flagged());
     }
 
     /// A set meets another where they share a bit, in the low half, the

@@ -101,6 +101,19 @@ impl Spans {
     pub(crate) fn sure_row(&self, y: usize) -> &[(u32, u32)] {
         of_row(&self.sure, &self.sure_start, y)
     }
+
+    /// The runs `cover` (row, x0, x1) of a picture `h` rows high, none of
+    /// them sure: spans made by hand, for the filter's tests.
+    #[cfg(test)]
+    pub(crate) fn of_runs(cover: Vec<(u32, u32, u32)>, h: u32) -> Self {
+        let (runs, start) = merged(cover, h);
+        Self {
+            runs,
+            start,
+            sure: Vec::new(),
+            sure_start: vec![0; h as usize + 1],
+        }
+    }
 }
 
 /// Pixels a centre must lie inside a ball's image for [`Spans::sure_row`].
