@@ -123,8 +123,7 @@ impl MotionGrid {
         // [`Seg::free`]), cleared: a unit in the last place, far within
         // `Near::PAD`.
         let (mut a, mut b) = (ray.at(near), ray.at(far.min(f32::MAX)));
-        a.x = f32::from_bits(a.x.to_bits() & !1);
-        b.x = f32::from_bits(b.x.to_bits() & !1);
+        (a.x, b.x) = (with_last_bit(a.x, false), with_last_bit(b.x, false));
         Some(Seg { a, b })
     }
 }
@@ -246,7 +245,7 @@ impl Seg {
     /// Flags it ([`Self::flagged`]).
     #[inline]
     pub fn flag(&mut self) {
-        self.a.x = f32::from_bits(self.a.x.to_bits() | 1);
+        self.a.x = with_last_bit(self.a.x, true);
     }
 
     /// Whether it is a free segment's ([`Record::segment`]: it left no
@@ -260,8 +259,15 @@ impl Seg {
     /// Marks it free ([`Self::free`]).
     #[inline]
     pub fn set_free(&mut self) {
-        self.b.x = f32::from_bits(self.b.x.to_bits() | 1);
+        self.b.x = with_last_bit(self.b.x, true);
     }
+}
+
+/// `v` with the last bit of its representation set to `on` (where a
+/// [`Seg`] keeps its flags).
+#[inline]
+fn with_last_bit(v: f32, on: bool) -> f32 {
+    f32::from_bits(v.to_bits() & !1 | u32::from(on))
 }
 
 /// Where the scalar path notes each ray's segment for incremental frames: it
