@@ -75,7 +75,8 @@ impl Moved {
     /// tracked record of a frame without a moved plane) one of its other
     /// segments near the moved shapes' box comes within a moved shape where
     /// it is now, whose cells meet its own, or any moved shape for a pixel in
-    /// the spans ([`crate::motion::Near::meets`]). Where a moved object was
+    /// the spans ([`crate::motion::Near::meets`]; out of the spans, not its
+    /// leading free segments, [`Seg::free`]). Where a moved object was
     /// matters only to the rays that met it, and those carry its bit. Blocks
     /// none of this reaches are skipped whole; the segments are tested eight
     /// at a time ([`Batch`]). With
