@@ -248,7 +248,7 @@ impl Seg {
         self.a.x = with_last_bit(self.a.x, true);
     }
 
-    /// Whether it is a free segment's ([`Record::segment`]: it left no
+    /// Whether it is a free segment's (`Record::segment`: it left no
     /// cells; the last bit of `b.x`).
     #[must_use]
     #[inline]
