@@ -359,7 +359,7 @@ fn final_row(
     // object (only edge pixels have cells in `rm`, so its blocks skip the
     // others).
     if moved.dirty(y as usize, rm, Layer::Edges { is, taken: dirty }, touched) {
-        redo.extend(touched.iter().map(|&x| x as usize).filter(|&x| is[x]));
+        redo.extend(touched.iter().map(|&x| x as usize));
     }
     let written = |(a, b): (u32, u32)| if a < b { [a, b] } else { [0, 0] };
     if redo.is_empty() && flips.is_empty() {

@@ -86,9 +86,9 @@ impl Moved {
     /// needlessly is only traced again, so the frame keeps its bytes either
     /// way (the base layer, one centre sample, asks for it; the edge layer's
     /// samples lie anywhere in the pixel and each costs three, so it does not).
-    /// In the edge layer ([`Layer::Edges`]) the pixels `taken` (ascending:
-    /// those the caller traces again anyway) are in `out` as they are, their
-    /// segments not tested, and only the edge pixels are read.
+    /// In the edge layer ([`Layer::Edges`]) only edge pixels are read and go
+    /// to `out`: those of the pixels `taken` (ascending: those the caller
+    /// traces again anyway) as they are, their segments not tested.
     pub(crate) fn dirty(
         &self,
         y: usize,
@@ -98,8 +98,8 @@ impl Moved {
     ) -> bool {
         out.clear();
         if !self.reaches(y, rm) {
-            if let Layer::Edges { taken, .. } = layer {
-                out.extend_from_slice(taken);
+            if let Layer::Edges { is, taken } = layer {
+                out.extend(taken.iter().filter(|&&x| is[x as usize]));
             }
             return !out.is_empty();
         }
@@ -128,9 +128,12 @@ impl Moved {
         let n = rm.cells.len();
         let mut room = BitRoom::new();
         let mut hit = room.row(n);
-        // A pixel already in `hit` has its segments skipped.
+        // A pixel already in `hit` has its segments skipped (only edges
+        // hold segments here, and only edges go out).
         for &x in taken {
-            hit.set(x as usize);
+            if is[x as usize] {
+                hit.set(x as usize);
+            }
         }
         let mut batch = (Batch::default(), Batch::default());
         let runs = self.spans.row(y);
@@ -575,6 +578,32 @@ mod tests {
         // time; met nothing that moves.
         let rm = row(&[(met(0), vec![]), (met(1), vec![]), (0, vec![])]);
         assert_eq!(taken(&moved, &rm), [0]);
+    }
+
+    /// The edge layer gives edge pixels only: those of the pixels taken in
+    /// the base layer, and those its own records take.
+    #[test]
+    fn the_edge_layer_gives_only_edges() {
+        let moved = ball_moved(Vec3::ZERO, Vec3::new(0.001, 0.0, 0.0));
+        let is = [true, false, true, false, true];
+        let edges = |rm: &RowMotion, taken: &[u32]| {
+            let mut out = Vec::new();
+            moved.dirty(0, rm, Layer::Edges { is: &is, taken }, &mut out);
+            out
+        };
+        // No record meets the moved ones: the taken edges alone.
+        let quiet = row(&vec![(0, vec![]); 5]);
+        assert_eq!(edges(&quiet, &[0, 1, 3]), [0]);
+        assert!(edges(&quiet, &[1, 3]).is_empty());
+        // Pixels 2 and 3 met the moved ball; 3 is no edge.
+        let met_it = row(&[
+            (0, vec![]),
+            (0, vec![]),
+            (met(0), vec![]),
+            (met(0), vec![]),
+            (0, vec![]),
+        ]);
+        assert_eq!(edges(&met_it, &[0, 1, 3]), [0, 2]);
     }
 
     #[test]
