@@ -193,10 +193,12 @@ struct Culling {
 
 /// Renders frame after frame, re-tracing only what motion changed. Each pixel
 /// keeps the cells of the motion grid (the box every moving object stays in, cut
-/// 32 x 4 x 1, see `motion`) that its rays passed through. A frame re-traces only the pixels whose
-/// cells meet those of the objects that moved since the frame before, where they
-/// were and where they are: every other pixel's rays meet the same objects as when
-/// it was traced, so it keeps its bytes. Every frame is byte-identical to a full
+/// 32 x 2 x 1, see `motion`) that its rays passed through, the moving objects
+/// they met and its rays' segments in the box. A frame re-traces only the pixels
+/// whose rays met an object that moved since the frame before, where it was, and
+/// those one of whose segments comes near a moved object where it is now (found
+/// through their cells and the screen's runs, `retrace`): every other pixel's
+/// rays meet the same objects as when it was traced, so it keeps its bytes. Every frame is byte-identical to a full
 /// render (tested over 300-frame swings). Anything else changing (camera, lights,
 /// size, a static object) brings a full frame.
 #[derive(Debug, Default)]

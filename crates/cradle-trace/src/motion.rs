@@ -27,7 +27,7 @@ pub(crate) use row::{BLOCK, RowMotion, SUPER};
 /// A set of cells of the motion grid, one bit each.
 pub type Cells = u128;
 
-/// The box that holds every moving object at every time, cut into 32 x 4 x 1
+/// The box that holds every moving object at every time, cut into 32 x 2 x 1
 /// cells (finest along x, the way the balls swing): a set of cells is a bit mask.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct MotionGrid {
