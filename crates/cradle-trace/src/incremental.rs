@@ -198,9 +198,10 @@ struct Culling {
 /// whose rays met an object that moved since the frame before, where it was, and
 /// those one of whose segments comes near a moved object where it is now (found
 /// through their cells and the screen's runs, `retrace`): every other pixel's
-/// rays meet the same objects as when it was traced, so it keeps its bytes. Every frame is byte-identical to a full
-/// render (tested over 300-frame swings). Anything else changing (camera, lights,
-/// size, a static object) brings a full frame.
+/// rays meet the same objects as when it was traced, so it keeps its bytes.
+/// Every frame is byte-identical to a full render (tested over 300-frame
+/// swings). Anything else changing (camera, lights, size, a static object)
+/// brings a full frame.
 #[derive(Debug, Default)]
 pub struct Incremental {
     /// The scene of the last frame, kept by [`Self::render`] to find the

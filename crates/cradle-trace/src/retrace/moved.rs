@@ -99,7 +99,7 @@ impl Moved {
         out.clear();
         if !self.reaches(y, rm) {
             if let Layer::Edges { is, taken } = layer {
-                out.extend(taken.iter().filter(|&&x| is[x as usize]));
+                out.extend(edges_among(is, taken));
             }
             return !out.is_empty();
         }
@@ -130,10 +130,8 @@ impl Moved {
         let mut hit = room.row(n);
         // A pixel already in `hit` has its segments skipped (only edges
         // hold segments here, and only edges go out).
-        for &x in taken {
-            if is[x as usize] {
-                hit.set(x as usize);
-            }
+        for x in edges_among(is, taken) {
+            hit.set(x as usize);
         }
         let mut batch = (Batch::default(), Batch::default());
         let runs = self.spans.row(y);
@@ -407,6 +405,11 @@ const _: () = assert!(BLOCK == 1 << BLOCK_SHIFT && SUPER == 8 && SUPER * BLOCK =
 /// `BLOCK` as a shift, and the pixels of a super-block.
 const BLOCK_SHIFT: u32 = 3;
 const SUPER_SHIFT: u32 = 6;
+
+/// The pixels of `taken` that are edges (`is`), in their order.
+fn edges_among<'a>(is: &'a [bool], taken: &'a [u32]) -> impl Iterator<Item = u32> + 'a {
+    taken.iter().copied().filter(|&x| is[x as usize])
+}
 
 /// Moves `r` on to the first of `runs` (ascending) that ends after pixel `x`.
 #[inline(always)]
