@@ -63,6 +63,7 @@ pub(crate) struct Layers {
 /// Buffers a thread's rows of the picture use in turn ([`final_row`]).
 #[derive(Default)]
 struct Scratch {
+    retest: Retest,
     redo: Vec<usize>,
     sorted: Vec<usize>,
     touched: Vec<u32>,
@@ -177,8 +178,7 @@ pub(crate) fn adaptive_next(
     (img, written): (&mut Image, &mut [[u32; 2]]),
     moved: &Moved,
 ) -> usize {
-    let (w, h) = (frame.width() as usize, frame.height() as usize);
-    let stride = w * 4;
+    let stride = frame.width() as usize * 4;
     // The base layer, noting per row the pixels motion may have changed and
     // those whose bytes changed.
     let mut traced: usize = layers
@@ -207,51 +207,38 @@ pub(crate) fn adaptive_next(
         })
         .sum();
     let (base, lin, xs) = (&layers.base.rgba, &layers.lin, &layers.changed);
-    // The edge test again at each changed pixel and its 4-neighbours, in
-    // place: per row, the pixels whose flag flipped.
+    let dirty = &layers.dirty;
     let least = least_above(threshold);
-    layers
-        .edge
-        .par_iter_mut()
-        .zip(layers.flips.par_iter_mut())
-        .enumerate()
-        .for_each_init(Retest::default, |scratch, (y, (flags, flipped))| {
-            flipped.clear();
-            let beside = [y.checked_sub(1), Some(y + 1).filter(|&v| v < h)];
-            let above_below = beside
-                .into_iter()
-                .flatten()
-                .flat_map(|v| xs[v].iter().map(|&x| x as usize));
-            let here = xs[y]
-                .iter()
-                .flat_map(|&x| x.saturating_sub(1) as usize..(x as usize + 2).min(w));
-            let mut room = BitRoom::new();
-            let mut bits = room.row(w);
-            above_below.chain(here).for_each(|x| bits.set(x));
-            let at = (base.as_slice(), y as u32, least);
-            for run in bits.runs() {
-                scratch.retest(frame, at, run, (flags, flipped));
-            }
-        });
-    let (edge, dirty, flips) = (&layers.edge, &layers.dirty, &layers.flips);
+    // Row by row: the edge test again at each changed pixel of the row and
+    // at the row's pixels beside a changed one (in place: the row's flags
+    // and the pixels whose flag flipped), then the row of the picture. A
+    // row's test reads the base rows above and below it, which the base
+    // layer has finished, and writes only its own flags.
     traced += img
         .rgba
         .par_chunks_exact_mut(stride)
         .zip(layers.edge_rows.par_iter_mut())
         .zip(written.par_iter_mut())
+        .zip(layers.edge.par_iter_mut().zip(layers.flips.par_iter_mut()))
         .enumerate()
-        .map_init(Scratch::default, |scratch, (y, ((row, rm), written))| {
-            let base = Base {
-                bytes: &base[y * stride..(y + 1) * stride],
-                lin: &lin[y],
-                dirty: &dirty[y],
-                changed: &xs[y],
-            };
-            let at = (y as u32, row, rm);
-            let (n, xs) = final_row(frame, at, &base, (&edge[y], &flips[y]), moved, scratch);
-            *written = xs;
-            n
-        })
+        .map_init(
+            Scratch::default,
+            |scratch, (y, (((row, rm), written), (flags, flipped)))| {
+                scratch
+                    .retest
+                    .row(frame, (base, y, least), xs, (flags, flipped));
+                let base = Base {
+                    bytes: &base[y * stride..(y + 1) * stride],
+                    lin: &lin[y],
+                    dirty: &dirty[y],
+                    changed: &xs[y],
+                };
+                let at = (y as u32, row, rm);
+                let (n, xs) = final_row(frame, at, &base, (flags, flipped), moved, scratch);
+                *written = xs;
+                n
+            },
+        )
         .sum::<usize>();
     traced
 }
@@ -268,6 +255,36 @@ struct Retest {
 }
 
 impl Retest {
+    /// The edge test of row `y` again, at each pixel of `changed[y]` and its
+    /// neighbours in the row and at each pixel of `changed[y - 1]` and
+    /// `changed[y + 1]` (`base`: the base layer's bytes, `least`: as
+    /// [`Frame::is_edge`] takes it): each pixel whose flag in `flags` flips
+    /// is flipped and noted in `flipped` (emptied first).
+    fn row(
+        &mut self,
+        frame: &Frame<'_>,
+        (base, y, least): (&[u8], usize, u16),
+        changed: &[Vec<u32>],
+        (flags, flipped): (&mut [bool], &mut Vec<u32>),
+    ) {
+        flipped.clear();
+        let (w, h) = (flags.len(), changed.len());
+        let beside = [y.checked_sub(1), Some(y + 1).filter(|&v| v < h)];
+        let above_below = beside
+            .into_iter()
+            .flatten()
+            .flat_map(|v| changed[v].iter().map(|&x| x as usize));
+        let here = changed[y]
+            .iter()
+            .flat_map(|&x| x.saturating_sub(1) as usize..(x as usize + 2).min(w));
+        let mut room = BitRoom::new();
+        let mut bits = room.row(w);
+        above_below.chain(here).for_each(|x| bits.set(x));
+        for run in bits.runs() {
+            self.retest(frame, (base, y as u32, least), run, (flags, flipped));
+        }
+    }
+
     /// Tests pixels `xs` of row `y` of `base` again (`least`: as
     /// [`Frame::is_edge`] takes it), and where a pixel's flag in `flags`
     /// flips, flips it and notes the pixel in `flipped`.
@@ -343,6 +360,7 @@ fn final_row(
         sorted,
         touched,
         samples,
+        ..
     } = scratch;
     redo.clear();
     for &x in flips {
