@@ -13,7 +13,7 @@
 //! it is still.
 
 use super::geometry::{Aabb, Ray};
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 mod batch;
 mod near;
@@ -88,12 +88,34 @@ impl MotionGrid {
         every_row & ROWS[(y0 * 2 + y1) as usize]
     }
 
+    /// [`Self::cells`] of the box of a segment from `a` to `b` that
+    /// [`Self::clip`] gave, in x and y alone (the grid has one z layer), and
+    /// without the test for a box beside the grid: a clipped segment lies in
+    /// the padded box, so that test fails only where rounding puts the
+    /// segment's box a unit past the grid's edge, and there the cells at the
+    /// edge are given (more cells only make more candidates).
+    #[must_use]
+    #[inline]
+    pub(crate) fn segment_cells(&self, a: Vec3, b: Vec3) -> Cells {
+        let pad = self.pad.truncate();
+        let (lo, hi) = (a.min(b).truncate() - pad, a.max(b).truncate() + pad);
+        let (min, inv) = (self.bounds.min.truncate(), self.inv_cell.truncate());
+        let n = Vec2::new(Self::N[0] as f32 - 1.0, Self::N[1] as f32 - 1.0);
+        let c0 = ((lo - min) * inv).clamp(Vec2::ZERO, n);
+        let c1 = ((hi - min) * inv).clamp(Vec2::ZERO, n);
+        let [x0, y0] = c0.as_ivec2().to_array().map(i32::cast_unsigned);
+        let [x1, y1] = c1.as_ivec2().to_array().map(i32::cast_unsigned);
+        let run = Cells::from((u32::MAX >> (31 - x1)) & (u32::MAX << x0));
+        let every_row = run | run << 32;
+        every_row & ROWS[(y0 * 2 + y1) as usize]
+    }
+
     /// The cells the segment of `ray` from its start to `t_max` passes through
     /// (a superset: those of its part inside the box's bounding box).
     #[must_use]
     pub fn segment(&self, ray: &Ray, t_max: f32) -> Cells {
         self.clip(ray, t_max)
-            .map_or(0, |s| self.cells(s.a.min(s.b), s.a.max(s.b)))
+            .map_or(0, |s| self.segment_cells(s.a, s.b))
     }
 
     /// The part of the segment of `ray` from its start to `t_max` inside the
@@ -355,7 +377,7 @@ impl Record for Motion {
             if free {
                 s.set_free();
             } else {
-                self.mask |= g.cells(s.a.min(s.b), s.a.max(s.b));
+                self.mask |= g.segment_cells(s.a, s.b);
             }
             self.last = Some(self.segs.len());
             self.segs.push(s);
@@ -544,5 +566,34 @@ mod tests {
             grid.cells(Vec3::splat(-5.0), Vec3::splat(5.0)),
             u128::from(u64::MAX)
         );
+    }
+
+    #[test]
+    fn a_clipped_segment_claims_the_cells_of_its_box_whichever_way_it_runs() {
+        let grid = grid();
+        // Rays through the box (x -0.4..0.4, y 0..0.4, z -0.1..0.1) in
+        // several directions, clipped, against the cells of each segment's
+        // box found the long way.
+        let rays = [
+            (Vec3::new(-1.0, 0.05, 0.0), Vec3::new(1.0, 0.3, 0.05)),
+            (Vec3::new(0.3, 0.9, 0.02), Vec3::new(-0.4, -1.0, -0.1)),
+            (Vec3::new(0.0, 0.2, -0.5), Vec3::new(0.01, 0.0, 1.0)),
+            (Vec3::new(0.9, 0.35, 0.09), Vec3::new(-1.0, 0.0, 0.0)),
+        ];
+        for (origin, dir) in rays {
+            let ray = Ray { origin, dir };
+            let s = grid.clip(&ray, 10.0).expect("the ray crosses the box");
+            let want = grid.cells(s.a.min(s.b), s.a.max(s.b));
+            assert_ne!(want, 0);
+            assert_eq!(grid.segment_cells(s.a, s.b), want, "{ray:?}");
+            assert_eq!(grid.segment_cells(s.b, s.a), want, "{ray:?} reversed");
+            assert_eq!(grid.segment(&ray, 10.0), want);
+        }
+        // A segment past the grid's edge in depth, which `cells` gives no
+        // cells (a clipped one lies there only by a rounding), still claims
+        // the cells of its x and y: more candidates, never fewer.
+        let (a, b) = (Vec3::new(0.0, 0.1, 0.1002), Vec3::new(0.1, 0.1, 0.1002));
+        assert_eq!(grid.cells(a, b), 0);
+        assert_ne!(grid.segment_cells(a, b), 0);
     }
 }

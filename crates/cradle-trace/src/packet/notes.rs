@@ -241,7 +241,7 @@ impl LaneNotes {
             if let Some(mut seg) = MotionGrid::clip_slabs(&ray, (lo.lane(i), hi.lane(i)), t[i]) {
                 if free >> i & 1 == 0 {
                     let m = &marks[i];
-                    m.set(m.get() | g.cells(seg.a.min(seg.b), seg.a.max(seg.b)));
+                    m.set(m.get() | g.segment_cells(seg.a, seg.b));
                 } else {
                     seg.set_free();
                 }
