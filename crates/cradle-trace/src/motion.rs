@@ -71,38 +71,35 @@ impl MotionGrid {
         if lo.cmpgt(self.bounds.max).any() || hi.cmplt(self.bounds.min).any() {
             return 0;
         }
-        let [nx, ny, nz] = Self::N;
-        let n = Vec3::new(nx as f32 - 1.0, ny as f32 - 1.0, nz as f32 - 1.0);
-        // Clamped to the grid, then truncated: for the non-negative values left
-        // that is the floor, without a call to `floorf` (the portable build has
-        // no rounding instruction); NaN clamps to 0 either way.
-        let c0 = ((lo - self.bounds.min) * self.inv_cell).clamp(Vec3::ZERO, n);
-        let c1 = ((hi - self.bounds.min) * self.inv_cell).clamp(Vec3::ZERO, n);
-        // One run of x bits (none if x0 > x1), repeated in every row of 32, then
-        // the rows y0..=y1 kept (one z layer: rows are y).
-        // (Through i32, whose saturating conversion is shorter than u32's.)
-        let [x0, y0, _] = c0.as_ivec3().to_array().map(i32::cast_unsigned);
-        let [x1, y1, _] = c1.as_ivec3().to_array().map(i32::cast_unsigned);
-        let run = Cells::from((u32::MAX >> (31 - x1)) & (u32::MAX << x0));
-        let every_row = run | run << 32;
-        every_row & ROWS[(y0 * 2 + y1) as usize]
+        self.xy_cells(lo.truncate(), hi.truncate())
     }
 
     /// [`Self::cells`] of the box of a segment from `a` to `b` that
-    /// [`Self::clip`] gave, in x and y alone (the grid has one z layer), and
-    /// without the test for a box beside the grid: a clipped segment lies in
-    /// the padded box, so that test fails only where rounding puts the
-    /// segment's box a unit past the grid's edge, and there the cells at the
-    /// edge are given (more cells only make more candidates).
+    /// [`Self::clip`] gave, without the test for a box beside the grid: a
+    /// clipped segment lies in the padded box, so that test fails only where
+    /// rounding puts the segment's box a unit past the grid's edge, and there
+    /// the cells at the edge are given (more cells only make more candidates).
     #[must_use]
     #[inline]
     pub(crate) fn segment_cells(&self, a: Vec3, b: Vec3) -> Cells {
         let pad = self.pad.truncate();
-        let (lo, hi) = (a.min(b).truncate() - pad, a.max(b).truncate() + pad);
+        self.xy_cells(a.min(b).truncate() - pad, a.max(b).truncate() + pad)
+    }
+
+    /// The cells of a padded box from `lo` to `hi` in x and y (the grid has
+    /// one z layer), clamped to the grid.
+    #[inline]
+    fn xy_cells(&self, lo: Vec2, hi: Vec2) -> Cells {
         let (min, inv) = (self.bounds.min.truncate(), self.inv_cell.truncate());
         let n = Vec2::new(Self::N[0] as f32 - 1.0, Self::N[1] as f32 - 1.0);
+        // Clamped to the grid, then truncated: for the non-negative values left
+        // that is the floor, without a call to `floorf` (the portable build has
+        // no rounding instruction); NaN clamps to 0 either way.
         let c0 = ((lo - min) * inv).clamp(Vec2::ZERO, n);
         let c1 = ((hi - min) * inv).clamp(Vec2::ZERO, n);
+        // One run of x bits (none if x0 > x1), repeated in every row of 32, then
+        // the rows y0..=y1 kept (one z layer: rows are y).
+        // (Through i32, whose saturating conversion is shorter than u32's.)
         let [x0, y0] = c0.as_ivec2().to_array().map(i32::cast_unsigned);
         let [x1, y1] = c1.as_ivec2().to_array().map(i32::cast_unsigned);
         let run = Cells::from((u32::MAX >> (31 - x1)) & (u32::MAX << x0));
